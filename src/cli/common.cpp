@@ -1,0 +1,104 @@
+#include "common.h"
+
+#include <cmath>
+#include <iostream>
+
+namespace coxmesh::cli {
+
+void TriangulationOptions::add_to(CLI::App& app) {
+  app.add_option("--triangulation", kind, "ambient triangulation: coxeter (A~_d, unit heights) or freudenthal")
+      ->check(CLI::IsMember({"coxeter", "freudenthal"}))
+      ->capture_default_str();
+  app.add_option("--matrix", matrix_file,
+                 "file with d rows of d numbers: lattice point y sits at matrix*y + offset (replaces "
+                 "--triangulation and --scale)");
+  auto* s = app.add_option("--scale", scale, "multiply the linear part by S (larger S, larger simplices)");
+  auto* h = app.add_option("--edge-length", edge_length, "scale so that the longest edge of every d-simplex is H");
+  s->excludes(h);
+  app.add_option("--offset", offset, "translation b1,...,bd of the triangulation");
+  app.add_option("--rotate", rotation_seed, "apply a random rotation drawn from this seed (deterministic)");
+}
+
+Triangulation TriangulationOptions::build(int d) const {
+  check_dimension(d);
+  std::optional<Triangulation> t;
+  if (!matrix_file.empty()) {
+    if (scale) throw InputError("--scale cannot be combined with --matrix (the matrix is the whole linear part)");
+    Eigen::MatrixXd m = read_matrix_file(matrix_file);
+    if (m.rows() != d)
+      throw InputError("the matrix is " + std::to_string(m.rows()) + "x" + std::to_string(m.cols()) +
+                       " but the dimension is " + std::to_string(d));
+    t.emplace(m, Eigen::VectorXd::Zero(d));
+  } else {
+    t.emplace(kind == "freudenthal" ? Triangulation::freudenthal(d) : Triangulation::coxeter(d));
+    if (scale) t = t->scaled(*scale);
+  }
+  if (rotation_seed) t = t->rotated(*rotation_seed);
+  if (edge_length) t = t->with_longest_edge(*edge_length);
+  if (!offset.empty()) {
+    std::vector<double> b = parse_point(offset, "--offset");
+    if (static_cast<int>(b.size()) != d)
+      throw InputError("--offset has " + std::to_string(b.size()) + " coordinates, expected " + std::to_string(d));
+    t = t->with_offset(Eigen::Map<const Eigen::VectorXd>(b.data(), d));
+  }
+  return *t;
+}
+
+std::vector<double> parse_point(const std::string& text, const std::string& what) {
+  std::vector<double> out;
+  std::size_t i = 0;
+  while (i < text.size()) {
+    while (i < text.size() && (text[i] == ',' || std::isspace(static_cast<unsigned char>(text[i])))) ++i;
+    if (i >= text.size()) break;
+    std::size_t j = i;
+    while (j < text.size() && text[j] != ',' && !std::isspace(static_cast<unsigned char>(text[j]))) ++j;
+    const std::string tok = text.substr(i, j - i);
+    std::size_t used = 0;
+    double v = 0;
+    try {
+      v = std::stod(tok, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != tok.size()) throw InputError(what + ": '" + tok + "' is not a number");
+    if (!std::isfinite(v)) throw InputError(what + ": NaN or infinite coordinate '" + tok + "'");
+    out.push_back(v);
+    i = j;
+  }
+  if (out.empty()) throw InputError(what + ": no coordinates in '" + text + "'");
+  return out;
+}
+
+nlohmann::json simplex_json(const Simplex& s) {
+  nlohmann::json j;
+  j["dimension"] = s.dimension();
+  j["vertex"] = std::vector<int>(s.y.begin(), s.y.begin() + s.d);
+  j["partition"] = s.partition();
+  return j;
+}
+
+nlohmann::json simplex_json(const Simplex& s, const Triangulation& t) {
+  nlohmann::json j = simplex_json(s);
+  std::vector<double> xs((s.k + 1) * s.d);
+  t.vertex_coordinates(s, xs.data());
+  nlohmann::json pts = nlohmann::json::array();
+  for (int v = 0; v <= s.k; ++v) pts.push_back(std::vector<double>(xs.begin() + v * s.d, xs.begin() + (v + 1) * s.d));
+  j["cartesian"] = pts;
+  return j;
+}
+
+int run_guarded(const std::function<void()>& body) {
+  try {
+    body();
+    return 0;
+  } catch (const InputError& e) {
+    std::cerr << "coxmesh: error: " << e.what() << "\n";
+  } catch (const std::ios_base::failure& e) {
+    std::cerr << "coxmesh: error: " << e.what() << "\n";
+  } catch (const std::runtime_error& e) {
+    std::cerr << "coxmesh: error: " << e.what() << "\n";
+  }
+  return 1;
+}
+
+}  // namespace coxmesh::cli

@@ -1,0 +1,36 @@
+// Shared pieces of the subcommands: triangulation options, number parsing, JSON for simplices.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "coxmesh/triangulation/triangulation.h"
+
+namespace coxmesh::cli {
+
+/// The options that choose the ambient triangulation, shared by locate, trace, ...
+struct TriangulationOptions {
+  std::string kind = "coxeter";  // coxeter | freudenthal
+  std::string matrix_file;       // replaces the whole linear part
+  std::optional<double> scale, edge_length;
+  std::string offset;            // "b1,...,bd"
+  std::optional<std::uint64_t> rotation_seed;
+
+  void add_to(CLI::App& app);
+  /// Builds the triangulation of R^d; throws InputError on inconsistent options.
+  Triangulation build(int d) const;
+};
+
+/// Parses "x1,...,xn" (whitespace or commas), every token fully consumed, finite; throws InputError.
+std::vector<double> parse_point(const std::string& text, const std::string& what);
+
+nlohmann::json simplex_json(const Simplex& s);
+nlohmann::json simplex_json(const Simplex& s, const Triangulation& t);  // with "cartesian"
+
+/// Runs a subcommand body, turning InputError and I/O errors into one line on stderr and exit 1.
+int run_guarded(const std::function<void()>& body);
+
+}  // namespace coxmesh::cli

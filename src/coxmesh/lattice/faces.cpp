@@ -1,0 +1,82 @@
+// Thesis §3; spec §1.4 (faces) and §1.6 (face test).
+#include "coxmesh/lattice/faces.h"
+
+#include <string>
+
+namespace coxmesh {
+
+Simplex face_from_indices(const Simplex& sigma, const int* indices, int k) {
+  const int l = sigma.k, d = sigma.d;
+  // New block of each old block b: blocks i_{h-1} ≤ b < i_h form block h−1; the rest wrap into k.
+  std::array<std::uint8_t, kMaxDimension + 1> relabel;
+  for (int b = 0; b <= l; ++b) relabel[b] = static_cast<std::uint8_t>(k);
+  for (int h = 1; h <= k; ++h)
+    for (int b = indices[h - 1]; b < indices[h]; ++b) relabel[b] = static_cast<std::uint8_t>(h - 1);
+  Simplex f;
+  f.d = sigma.d;
+  f.k = static_cast<std::uint8_t>(k);
+  const int i0 = indices[0];
+  for (int i = 0; i < d; ++i) f.y[i] = sigma.y[i] + (sigma.block[i] < i0 ? 1 : 0);
+  for (int i = 0; i <= d; ++i) f.block[i] = relabel[sigma.block[i]];
+  return f;
+}
+
+void FaceEnumerator::reset(const Simplex& sigma, int k) {
+  if (k < 0 || k > sigma.k)
+    throw InputError("face dimension " + std::to_string(k) + " is outside 0.." + std::to_string(sigma.k));
+  sigma_ = sigma;
+  k_ = k;
+  started_ = false;
+  done_ = false;
+}
+
+bool FaceEnumerator::next(Simplex& out) {
+  if (done_) return false;
+  const int l = sigma_.k;
+  if (!started_) {
+    for (int h = 0; h <= k_; ++h) idx_[h] = h;
+    started_ = true;
+  } else {
+    // Next combination of k+1 indices out of l+1, lexicographically.
+    int h = k_;
+    while (h >= 0 && idx_[h] == l - k_ + h) --h;
+    if (h < 0) {
+      done_ = true;
+      return false;
+    }
+    ++idx_[h];
+    for (int g = h + 1; g <= k_; ++g) idx_[g] = idx_[g - 1] + 1;
+  }
+  out = face_from_indices(sigma_, idx_.data(), k_);
+  return true;
+}
+
+int vertex_index(const Simplex& sigma, const std::int32_t* v) {
+  // v = v_j iff v − y is the indicator of {i < d : block(i) < j}. j is one more than the largest
+  // block of a raised coordinate, and no lowered-or-equal coordinate may sit in a block below j.
+  int j = 0;
+  for (int i = 0; i < sigma.d; ++i) {
+    const std::int32_t diff = v[i] - sigma.y[i];
+    if (diff == 1) {
+      if (sigma.block[i] + 1 > j) j = sigma.block[i] + 1;
+      if (j > sigma.k) return -1;  // a coordinate in the last block never rises
+    } else if (diff != 0) {
+      return -1;
+    }
+  }
+  for (int i = 0; i < sigma.d; ++i)
+    if (v[i] == sigma.y[i] && sigma.block[i] < j) return -1;
+  return j;
+}
+
+bool is_face_of(const Simplex& tau, const Simplex& sigma) {
+  if (tau.d != sigma.d || tau.k > sigma.k) return false;
+  std::array<std::int32_t, kMaxDimension> v;
+  for (int j = 0; j <= tau.k; ++j) {
+    tau.vertex(j, v.data());
+    if (vertex_index(sigma, v.data()) < 0) return false;
+  }
+  return true;
+}
+
+}  // namespace coxmesh

@@ -1,0 +1,42 @@
+// Thesis §3 (faces of a permutahedral simplex); spec §1.4 and §1.6.
+#pragma once
+
+#include <array>
+
+#include "coxmesh/lattice/simplex.h"
+
+namespace coxmesh {
+
+/// The k-face of σ (dimension l) spanned by the vertices i_0 < … < i_k (spec §1.4): the base moves
+/// to v_{i_0}; consecutive blocks between chosen vertices merge; the blocks after i_k and before
+/// i_0 merge into the last block (which holds d, so the result is canonical). O(d).
+/// `indices` has k+1 entries; preconditions (checked by the caller): increasing and ≤ l.
+Simplex face_from_indices(const Simplex& sigma, const int* indices, int k);
+
+/// Enumerates the k-faces of a simplex in lexicographic order of their vertex indices.
+/// No allocation: reset() and next() work on fixed-size state.
+///
+///   FaceEnumerator faces(sigma, 1);
+///   for (Simplex f; faces.next(f);) use(f);
+class FaceEnumerator {
+ public:
+  FaceEnumerator() = default;
+  FaceEnumerator(const Simplex& sigma, int k) { reset(sigma, k); }
+  /// Throws InputError unless 0 ≤ k ≤ dim σ.
+  void reset(const Simplex& sigma, int k);
+  bool next(Simplex& out);
+
+ private:
+  Simplex sigma_;
+  std::array<int, kMaxDimension + 1> idx_{};
+  int k_ = 0;
+  bool started_ = false, done_ = true;
+};
+
+/// Index j of the vertex v of σ (v = v_j), or −1 if v is not a vertex of σ. O(d).
+int vertex_index(const Simplex& sigma, const std::int32_t* v);
+
+/// True iff τ is a face of σ (every vertex of τ is a vertex of σ; spec §1.6). O(d·(dim τ + 1)).
+bool is_face_of(const Simplex& tau, const Simplex& sigma);
+
+}  // namespace coxmesh

@@ -1,0 +1,118 @@
+// Thesis §3 (permutahedral representation); spec §1.2. The one definition of the simplex encoding.
+//
+// A k-simplex of the Freudenthal–Kuhn triangulation of R^d is a pair (y, ω):
+//   * y ∈ Z^d, its minimal vertex;
+//   * ω = (ω_0, …, ω_k) an ordered partition of {0, …, d} into k+1 non-empty blocks, with the special
+//     index d in the last block ω_k (canonical form; 0-based like GUDHI).
+// With e_i the unit vectors and e_d := −(1, …, 1), the vertices are v_j = y + e(ω_0) + … + e(ω_{j−1}).
+// Since d is in the last block, v_j = y + Σ_{i<d, block(i)<j} e_i: the vertex chain is componentwise
+// increasing and every coordinate is y_i or y_i + 1.
+//
+// Encoding: the partition is stored as the map block[i] ∈ {0..k} for each i ∈ {0..d}. This form is
+// canonical by construction (no sorting of blocks ever), and gives vertex coordinates in O(1):
+//   v_j[i] = y[i] + (block[i] < j).
+// Unused entries (index ≥ d for y, > d for block) are kept zero, so == is a plain member comparison.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <iosfwd>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <vector>
+
+namespace coxmesh {
+
+/// Largest supported ambient dimension: d+1 block labels fit in one 32-bit mask.
+inline constexpr int kMaxDimension = 31;
+
+/// Thrown for every invalid input (dimensions, NaN, malformed text, overflow, singular matrices).
+struct InputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Throws InputError unless 1 ≤ d ≤ kMaxDimension.
+void check_dimension(int d);
+
+/// Lattice coordinates are checked to stay within ±kMaxLatticeCoordinate, so that vertex, face and
+/// coface arithmetic (which moves coordinates by ±1) can never overflow int32.
+inline constexpr std::int32_t kMaxLatticeCoordinate = (1 << 30);
+
+struct Simplex {
+  std::array<std::int32_t, kMaxDimension> y{};      ///< minimal vertex, entries [0, d)
+  std::array<std::uint8_t, kMaxDimension + 1> block{};  ///< block of each index, entries [0, d]
+  std::uint8_t d = 0;                                ///< ambient dimension
+  std::uint8_t k = 0;                                ///< simplex dimension (number of blocks − 1)
+
+  int ambient_dimension() const { return d; }
+  int dimension() const { return k; }
+
+  /// Lattice coordinate i of vertex j (0 ≤ j ≤ k, 0 ≤ i < d).
+  std::int32_t vertex_coordinate(int j, int i) const { return y[i] + (block[i] < j ? 1 : 0); }
+  /// Writes the d lattice coordinates of vertex j.
+  void vertex(int j, std::int32_t* out) const {
+    for (int i = 0; i < d; ++i) out[i] = vertex_coordinate(j, i);
+  }
+  /// Number of elements of block j.
+  int block_size(int j) const;
+  /// The blocks as sorted lists (for printing and interchange).
+  std::vector<std::vector<int>> partition() const;
+
+  /// Builds a simplex from y and a list of blocks; throws InputError unless the blocks partition
+  /// {0..d} and d is in the last block. Blocks need not be sorted.
+  static Simplex from_partition(std::span<const std::int32_t> y, const std::vector<std::vector<int>>& blocks);
+  /// The vertex y as a 0-simplex.
+  static Simplex vertex_simplex(std::span<const std::int32_t> y);
+
+  friend bool operator==(const Simplex&, const Simplex&) = default;
+};
+
+static_assert(std::is_trivially_copyable_v<Simplex>);
+static_assert(sizeof(Simplex) == 160, "y (31 int32) + block (32 bytes) + d + k, padded");
+
+/// Total order: y lexicographically, then more blocks first (a face sorts after its cofaces, as in
+/// GUDHI's Simplex_comparator), then the sorted blocks lexicographically.
+bool operator<(const Simplex& a, const Simplex& b);
+
+// ---- Packed form: the compact key stored in hash sets and output maps --------------------------
+// d words for y, then the d+1 block labels as bytes, 4 per word. For d = 3 that is 16 bytes.
+constexpr int packed_words(int d) { return d + (d + 1 + 3) / 4; }
+void pack(const Simplex& s, std::uint32_t* out);
+Simplex unpack(const std::uint32_t* words, int d);
+
+/// Strong 64-bit hash of packed words (a multiply-xorshift mix per word, then a final avalanche).
+inline std::uint64_t hash_words(const std::uint32_t* w, int n) {
+  std::uint64_t h = 0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(n);
+  for (int i = 0; i < n; ++i) {
+    h ^= w[i];
+    h *= 0xBF58476D1CE4E5B9ull;
+    h ^= h >> 31;
+  }
+  h ^= h >> 33;
+  h *= 0xFF51AFD7ED558CCDull;
+  h ^= h >> 33;
+  return h;
+}
+
+/// Hash of the whole simplex (vertex and partition); equal simplices hash equal.
+std::uint64_t hash_value(const Simplex& s);
+
+struct SimplexHash {
+  std::size_t operator()(const Simplex& s) const { return static_cast<std::size_t>(hash_value(s)); }
+};
+
+// ---- Text form: "(y_0,...,y_{d-1}) [{..},{..},...]" --------------------------------------------
+std::string to_string(const Simplex& s);
+std::ostream& operator<<(std::ostream& os, const Simplex& s);
+/// Parses the text form; throws InputError (with the reason) on malformed text, unsorted or
+/// overlapping blocks, missing indices, d not in the last block, coordinates out of range.
+Simplex parse_simplex(std::string_view text);
+
+/// Throws InputError if a coordinate of y is outside ±kMaxLatticeCoordinate.
+void check_lattice_range(std::span<const std::int32_t> y);
+
+}  // namespace coxmesh
