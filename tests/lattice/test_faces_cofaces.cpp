@@ -1,0 +1,229 @@
+// Faces and cofaces: worked examples of spec §1.10, exact counts of §1.5, and a brute-force
+// enumeration of all simplices of a box from their vertex sets (independent of the encoding).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include "coxmesh/lattice/cofaces.h"
+#include "coxmesh/lattice/faces.h"
+
+using namespace coxmesh;
+
+namespace {
+
+std::set<Simplex> faces(const Simplex& s, int k) {
+  std::set<Simplex> out;
+  FaceEnumerator e(s, k);
+  for (Simplex f; e.next(f);) EXPECT_TRUE(out.insert(f).second) << "duplicate face " << f;
+  return out;
+}
+
+std::set<Simplex> cofaces(const Simplex& s, int l) {
+  std::set<Simplex> out;
+  CofaceEnumerator e(s, l);
+  for (Simplex f; e.next(f);) EXPECT_TRUE(out.insert(f).second) << "duplicate coface " << f;
+  return out;
+}
+
+std::set<Simplex> parse_all(std::initializer_list<const char*> texts) {
+  std::set<Simplex> out;
+  for (const char* t : texts) out.insert(parse_simplex(t));
+  return out;
+}
+
+using VertexSet = std::vector<std::vector<int>>;  // sorted lattice points
+
+VertexSet vertex_set(const Simplex& s) {
+  VertexSet v(s.k + 1, std::vector<int>(s.d));
+  for (int j = 0; j <= s.k; ++j)
+    for (int i = 0; i < s.d; ++i) v[j][i] = s.vertex_coordinate(j, i);
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+// All simplices with minimal vertex in [lo, hi]^d, as vertex sets: strict chains
+// y = v_0 < v_1 < … < v_k with v_k − y ∈ {0,1}^d (chains ∅ ⊂ A_1 ⊂ … ⊂ A_k ⊆ {0..d−1}).
+void chains(int d, std::vector<int>& y, unsigned prev, VertexSet& cur, std::vector<VertexSet>& out) {
+  { VertexSet sorted = cur; std::sort(sorted.begin(), sorted.end()); out.push_back(sorted); }
+  for (unsigned a = prev + 1; a < (1u << d); ++a) {
+    if ((a & prev) != prev) continue;  // must be a strict superset
+    std::vector<int> v = y;
+    for (int i = 0; i < d; ++i) v[i] += (a >> i) & 1;
+    cur.push_back(v);
+    chains(d, y, a, cur, out);
+    cur.pop_back();
+  }
+}
+
+std::vector<VertexSet> all_simplices_in_box(int d, int lo, int hi) {
+  std::vector<VertexSet> out;
+  std::vector<int> y(d, lo);
+  while (true) {
+    VertexSet cur{y};
+    chains(d, y, 0, cur, out);
+    int i = 0;
+    while (i < d && y[i] == hi) y[i++] = lo;
+    if (i == d) break;
+    ++y[i];
+  }
+  return out;
+}
+
+bool subset(const VertexSet& a, const VertexSet& b) { return std::includes(b.begin(), b.end(), a.begin(), a.end()); }
+
+}  // namespace
+
+TEST(Faces, WorkedExamplesOfSpec) {
+  // §1.10 example 2.
+  EXPECT_EQ(faces(parse_simplex("(0,0) [{0},{1},{2}]"), 1),
+            parse_all({"(0,0) [{0},{1,2}]", "(0,0) [{0,1},{2}]", "(1,0) [{1},{0,2}]"}));
+  EXPECT_EQ(faces(parse_simplex("(0,0) [{1},{0},{2}]"), 1),
+            parse_all({"(0,0) [{1},{0,2}]", "(0,0) [{0,1},{2}]", "(0,1) [{0},{1,2}]"}));
+  // §1.10 example 3.
+  const Simplex s = parse_simplex("(0,0,0) [{0},{1},{2},{3}]");
+  EXPECT_EQ(faces(s, 1), parse_all({"(0,0,0) [{0},{1,2,3}]", "(0,0,0) [{0,1},{2,3}]", "(0,0,0) [{0,1,2},{3}]",
+                                    "(1,0,0) [{1},{0,2,3}]", "(1,0,0) [{1,2},{0,3}]", "(1,1,0) [{2},{0,1,3}]"}));
+  EXPECT_EQ(faces(s, 2), parse_all({"(0,0,0) [{0},{1},{2,3}]", "(0,0,0) [{0},{1,2},{3}]", "(0,0,0) [{0,1},{2},{3}]",
+                                    "(1,0,0) [{1},{2},{0,3}]"}));
+  EXPECT_EQ(faces(s, 3), parse_all({"(0,0,0) [{0},{1},{2},{3}]"}));
+  EXPECT_THROW(FaceEnumerator(s, 4), InputError);
+}
+
+TEST(Cofaces, WorkedExamplesOfSpec) {
+  const Simplex v = parse_simplex("(0,0) [{0,1,2}]");  // §1.10 example 1
+  EXPECT_EQ(cofaces(v, 1), parse_all({"(0,0) [{0,1},{2}]", "(-1,-1) [{0,1},{2}]", "(0,0) [{1},{0,2}]",
+                                      "(0,-1) [{1},{0,2}]", "(0,0) [{0},{1,2}]", "(-1,0) [{0},{1,2}]"}));
+  EXPECT_EQ(cofaces(v, 2), parse_all({"(0,0) [{0},{1},{2}]", "(0,0) [{1},{0},{2}]", "(-1,-1) [{0},{1},{2}]",
+                                      "(0,-1) [{1},{0},{2}]", "(-1,0) [{0},{1},{2}]", "(-1,-1) [{1},{0},{2}]"}));
+  // §1.10 example 2.
+  EXPECT_EQ(cofaces(parse_simplex("(0,0) [{0,1},{2}]"), 2), parse_all({"(0,0) [{0},{1},{2}]", "(0,0) [{1},{0},{2}]"}));
+  EXPECT_EQ(cofaces(parse_simplex("(0,0) [{0},{1,2}]"), 2), parse_all({"(0,0) [{0},{1},{2}]", "(0,-1) [{1},{0},{2}]"}));
+  // §1.10 example 4.
+  const Simplex e = parse_simplex("(0,0,0) [{0,1},{2,3}]");
+  EXPECT_EQ(cofaces(e, 2), parse_all({"(0,0,0) [{0},{1},{2,3}]", "(0,0,0) [{1},{0},{2,3}]", "(0,0,0) [{0,1},{2},{3}]",
+                                      "(0,0,-1) [{2},{0,1},{3}]"}));
+  EXPECT_EQ(cofaces(e, 3), parse_all({"(0,0,0) [{0},{1},{2},{3}]", "(0,0,0) [{1},{0},{2},{3}]",
+                                      "(0,0,-1) [{2},{1},{0},{3}]", "(0,0,-1) [{2},{0},{1},{3}]"}));
+  EXPECT_EQ(cofaces(e, 1), parse_all({"(0,0,0) [{0,1},{2,3}]"}));
+}
+
+TEST(Cofaces, GudhiUnitTestInDimension10) {
+  // §1.10 example 5.
+  const Simplex s = parse_simplex("(0,0,0,0,0,0,0,0,0,0) [{5},{2},{3,7},{4,9},{0,6,8},{1,10}]");
+  EXPECT_EQ(s.dimension(), 5);
+  EXPECT_EQ(faces(s, 4).size(), 6u);
+  EXPECT_EQ(faces(s, 3).size(), 15u);
+  const std::uint64_t expected[] = {1, 12, 54, 116, 120, 48};
+  for (int l = 5; l <= 10; ++l) {
+    EXPECT_EQ(cofaces(s, l).size(), expected[l - 5]) << "l = " << l;
+    EXPECT_EQ(coface_count(s, l), expected[l - 5]);
+  }
+  EXPECT_TRUE(is_face_of(parse_simplex("(0,0,0,0,0,0,0,0,0,0) [{5},{0,1,2,3,4,6,7,8,9,10}]"), s));
+  const Simplex c = parse_simplex("(0,-1,0,0,0,0,0,0,0,0) [{1},{5},{2},{3,7},{4,9},{0,6,8},{10}]");
+  EXPECT_TRUE(is_face_of(s, c));
+  EXPECT_FALSE(is_face_of(c, s));
+}
+
+TEST(Cofaces, VertexStarIsAPermutahedron) {
+  // l-cofaces of a vertex = faces of dimension d − l of the permutahedron of order d+1 (spec §1.5).
+  const std::vector<std::vector<std::uint64_t>> expected = {
+      {1, 2}, {1, 6, 6}, {1, 14, 36, 24}, {1, 30, 150, 240, 120}, {1, 62, 540, 1560, 1800, 720},
+      {1, 126, 1806, 8400, 16800, 15120, 5040}};
+  for (int d = 1; d <= 6; ++d) {
+    const Simplex v = Simplex::vertex_simplex(std::vector<std::int32_t>(d, 3));
+    for (int l = 0; l <= d; ++l) {
+      EXPECT_EQ(cofaces(v, l).size(), expected[d - 1][l]);
+      EXPECT_EQ(coface_count(v, l), expected[d - 1][l]);
+    }
+  }
+}
+
+TEST(Cofaces, CountFormulaForEverySimplexTypeUpToDimension6) {
+  // A type is the sequence of block sizes (a composition of d+1); check one simplex of each type
+  // and every l, including the closed forms for cofacets and maximal cofaces.
+  for (int d = 1; d <= 6; ++d) {
+    for (unsigned cuts = 0; cuts < (1u << d); ++cuts) {
+      std::vector<std::vector<int>> blocks{{0}};
+      for (int i = 1; i <= d; ++i) {
+        if (cuts >> (i - 1) & 1) blocks.push_back({i});
+        else blocks.back().push_back(i);
+      }
+      const Simplex s = Simplex::from_partition(std::vector<std::int32_t>(d, -1), blocks);
+      std::uint64_t facets_formula = 0, maximal_formula = 1;
+      for (const auto& b : blocks) {
+        facets_formula += (1u << b.size()) - 2;
+        for (std::size_t f = 2; f <= b.size(); ++f) maximal_formula *= f;
+      }
+      for (int l = s.k; l <= d; ++l) {
+        const auto found = cofaces(s, l);
+        EXPECT_EQ(found.size(), coface_count(s, l)) << s << " l=" << l;
+        for (const Simplex& c : found) EXPECT_TRUE(is_face_of(s, c)) << s << " not a face of " << c;
+      }
+      if (s.k < d) {
+        EXPECT_EQ(coface_count(s, s.k + 1), facets_formula);
+      }
+      EXPECT_EQ(coface_count(s, d), maximal_formula);
+    }
+  }
+}
+
+TEST(FacesCofaces, BruteForceOnABoxUpToDimension4) {
+  for (int d = 1; d <= 4; ++d) {
+    // Simplices with minimal vertex in [-1, 1]^d; queries with minimal vertex 0 have all their
+    // cofaces (minimal vertex ≥ −1) and faces (≤ +1) inside.
+    const std::vector<VertexSet> all = all_simplices_in_box(d, -1, 1);
+    std::map<VertexSet, int> index;
+    for (std::size_t i = 0; i < all.size(); ++i) index[all[i]] = static_cast<int>(i);
+    ASSERT_EQ(index.size(), all.size());
+    int checked = 0;
+    for (const VertexSet& vs : all) {
+      if (vs.front() != std::vector<int>(d, 0)) continue;
+      // Encode the chain: y = v_0, block[i] = step at which coordinate i rises, else the last block.
+      const int k = static_cast<int>(vs.size()) - 1;
+      std::vector<std::vector<int>> blocks(k + 1);
+      for (int i = 0; i < d; ++i) {
+        int step = k;
+        for (int j = 1; j <= k; ++j)
+          if (vs[j][i] > vs[j - 1][i]) step = j - 1;
+        blocks[step].push_back(i);
+      }
+      blocks[k].push_back(d);
+      const Simplex s = Simplex::from_partition(std::vector<std::int32_t>(d, 0), blocks);
+      ASSERT_EQ(vertex_set(s), vs);
+      for (int l = 0; l <= d; ++l) {
+        std::set<VertexSet> expect_faces, expect_cofaces, got_faces, got_cofaces;
+        for (const VertexSet& other : all) {
+          if (static_cast<int>(other.size()) != l + 1) continue;
+          if (l <= k && subset(other, vs)) expect_faces.insert(other);
+          if (l >= k && subset(vs, other)) expect_cofaces.insert(other);
+        }
+        if (l <= k)
+          for (const Simplex& f : faces(s, l)) got_faces.insert(vertex_set(f));
+        if (l >= k)
+          for (const Simplex& c : cofaces(s, l)) got_cofaces.insert(vertex_set(c));
+        EXPECT_EQ(got_faces, expect_faces) << s << " l=" << l;
+        EXPECT_EQ(got_cofaces, expect_cofaces) << s << " l=" << l;
+      }
+      ++checked;
+    }
+    // k-simplices per lattice point: Σ_k k!·S(d+1, k+1) (ordered partitions with d last).
+    const int per_point[] = {0, 2, 6, 26, 150};
+    EXPECT_EQ(checked, per_point[d]);
+  }
+}
+
+TEST(FacesCofaces, FaceTestAgainstVertexSets) {
+  const Simplex s = parse_simplex("(0,0,0) [{1},{0},{2},{3}]");
+  for (int k = 0; k <= 3; ++k)
+    for (const Simplex& f : faces(s, k)) {
+      EXPECT_TRUE(is_face_of(f, s));
+      EXPECT_TRUE(subset(vertex_set(f), vertex_set(s)));
+    }
+  EXPECT_FALSE(is_face_of(parse_simplex("(0,0,0) [{0},{1,2,3}]"), s));
+  EXPECT_FALSE(is_face_of(parse_simplex("(0,0,0) [{0,1,2,3}]"), parse_simplex("(1,0,0) [{0,1,2,3}]")));
+  // y + (1,…,1) is never a vertex of a simplex based at y.
+  EXPECT_FALSE(is_face_of(parse_simplex("(1,1,1) [{0,1,2,3}]"), parse_simplex("(0,0,0) [{0,1},{2,3}]")));
+  EXPECT_TRUE(is_face_of(parse_simplex("(1,1,1) [{0,1,2,3}]"), parse_simplex("(0,0,0) [{0,1,2},{3}]")));
+}

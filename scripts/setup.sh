@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Installs the Debian packages coxmesh needs, then configures and builds it (Release) in ./build.
+# Extra arguments go to cmake's configure step, e.g. -DCOXMESH_SANITIZE=ON.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+packages=(g++ cmake make libeigen3-dev libcli11-dev nlohmann-json3-dev libmuparser-dev
+          libgtest-dev libgmock-dev libbenchmark-dev libgudhi-dev libboost-dev)
+missing=()
+for p in "${packages[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
+if [ ${#missing[@]} -gt 0 ]; then
+  sudo=""; [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}"
+fi
+build=${COXMESH_BUILD_DIR:-build}
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release "$@"
+cmake --build "$build" -j "$(nproc)"
