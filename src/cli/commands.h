@@ -6,4 +6,6 @@
 namespace coxmesh::cli {
 void register_locate(CLI::App& app, int& status);
 void register_faces(CLI::App& app, int& status);  // faces and cofaces
+void register_trace(CLI::App& app, int& status);  // trace and presets
+void register_quality(CLI::App& app, int& status);
 }  // namespace coxmesh::cli

@@ -10,6 +10,8 @@ int main(int argc, char** argv) {
   int status = 0;
   coxmesh::cli::register_locate(app, status);
   coxmesh::cli::register_faces(app, status);
+  coxmesh::cli::register_trace(app, status);
+  coxmesh::cli::register_quality(app, status);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

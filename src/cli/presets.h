@@ -1,0 +1,35 @@
+// The built-in manifolds of `coxmesh trace --preset NAME`, with their parameters and defaults.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "coxmesh/oracle/implicit_function.h"
+
+namespace coxmesh::cli {
+
+struct PresetParameters {
+  int m = 2;                   ///< --m: intrinsic dimension (sphere, plane)
+  std::optional<int> dim;      ///< --dim: ambient dimension
+  std::optional<double> radius, minor_radius;
+  std::vector<double> center;
+};
+
+struct Preset {
+  FunctionPtr function;
+  FunctionPtr domain;          ///< built-in domain for unbounded manifolds (may be null)
+  double edge_length;          ///< default longest edge of the ambient triangulation
+  double extent;               ///< half-width of the default box around the origin
+};
+
+struct PresetInfo {
+  std::string name, summary;
+};
+
+/// The catalogue, one line each (for `coxmesh presets` and --help).
+const std::vector<PresetInfo>& preset_catalogue();
+/// Builds the preset; throws InputError for unknown names or bad parameters.
+Preset make_preset(const std::string& name, const PresetParameters& p);
+
+}  // namespace coxmesh::cli

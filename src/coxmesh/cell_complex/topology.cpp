@@ -1,0 +1,122 @@
+#include "coxmesh/cell_complex/topology.h"
+
+#include <algorithm>
+#include <phat/boundary_matrix.h>
+#include <phat/compute_persistence_pairs.h>
+#include <phat/persistence_pairs.h>
+#include <phat/representations/bit_tree_pivot_column.h>
+#include <phat/algorithms/twist_reduction.h>
+
+namespace coxmesh {
+
+namespace {
+
+// Number of cofacets of each cell of `lower` among the cells of `upper` (same kind).
+std::vector<std::uint32_t> coface_counts(const CellLevel& lower, const CellLevel& upper) {
+  std::vector<std::uint32_t> count(lower.size(), 0);
+  for (std::uint32_t f : upper.facet_ids) ++count[f];
+  return count;
+}
+
+std::string check_manifold(const CellComplex& cc) {
+  const int m = cc.manifold_dimension;
+  const auto& in = cc.interior;
+  const auto& bd = cc.boundary;
+  if (m >= 1)
+    for (std::uint32_t c = 0; c < in[1].size(); ++c) {
+      const std::size_t ends = in[1].facets(c).size() +
+                               (in[1].boundary_facet.empty() || in[1].boundary_facet[c] == CellLevel::kNone ? 0 : 1);
+      if (ends != 2) return "an edge cell has " + std::to_string(ends) + " end points";
+    }
+  for (int j = 0; j < m; ++j) {
+    const auto count = coface_counts(in[j], in[j + 1]);
+    for (std::uint32_t c = 0; c < count.size(); ++c) {
+      if (count[c] == 0) return "a " + std::to_string(j) + "-cell lies in no " + std::to_string(j + 1) + "-cell";
+      if (j == m - 1 && count[c] != 2)
+        return "an (m-1)-cell lies in " + std::to_string(count[c]) + " m-cells instead of 2";
+    }
+  }
+  for (int j = 0; j + 1 < m && j + 1 < static_cast<int>(bd.size()); ++j) {
+    const auto count = coface_counts(bd[j], bd[j + 1]);
+    for (std::uint32_t c = 0; c < count.size(); ++c) {
+      if (count[c] == 0) return "a boundary " + std::to_string(j) + "-cell lies in no boundary cell above it";
+      if (j == m - 2 && count[c] != 2)
+        return "a boundary (m-2)-cell lies in " + std::to_string(count[c]) + " boundary (m-1)-cells instead of 2";
+    }
+  }
+  return "";
+}
+
+std::vector<std::size_t> betti_numbers(const CellComplex& cc) {
+  const int m = cc.manifold_dimension;
+  // Global order: by dimension; within dimension j, interior cells then boundary cells.
+  std::vector<std::size_t> in_base(m + 1), bd_base(m + 1);
+  std::size_t n = 0;
+  for (int j = 0; j <= m; ++j) {
+    in_base[j] = n;
+    n += cc.interior[j].size();
+    bd_base[j] = n;
+    if (j < static_cast<int>(cc.boundary.size())) n += cc.boundary[j].size();
+  }
+  phat::boundary_matrix<phat::bit_tree_pivot_column> matrix;
+  matrix.set_num_cols(static_cast<phat::index>(n));
+  std::vector<phat::index> col;
+  std::vector<int> dim_of(n);
+  for (int j = 0; j <= m; ++j) {
+    const CellLevel& li = cc.interior[j];
+    for (std::uint32_t c = 0; c < li.size(); ++c) {
+      col.clear();
+      for (std::uint32_t f : li.facets(c)) col.push_back(static_cast<phat::index>(in_base[j - 1] + f));
+      if (!li.boundary_facet.empty() && li.boundary_facet[c] != CellLevel::kNone)
+        col.push_back(static_cast<phat::index>(bd_base[j - 1] + li.boundary_facet[c]));
+      std::sort(col.begin(), col.end());
+      const std::size_t id = in_base[j] + c;
+      matrix.set_col(static_cast<phat::index>(id), col);
+      matrix.set_dim(static_cast<phat::index>(id), static_cast<phat::dimension>(j));
+      dim_of[id] = j;
+    }
+    if (j >= static_cast<int>(cc.boundary.size())) continue;
+    const CellLevel& lb = cc.boundary[j];
+    for (std::uint32_t c = 0; c < lb.size(); ++c) {
+      col.clear();
+      for (std::uint32_t f : lb.facets(c)) col.push_back(static_cast<phat::index>(bd_base[j - 1] + f));
+      std::sort(col.begin(), col.end());
+      const std::size_t id = bd_base[j] + c;
+      matrix.set_col(static_cast<phat::index>(id), col);
+      matrix.set_dim(static_cast<phat::index>(id), static_cast<phat::dimension>(j));
+      dim_of[id] = j;
+    }
+  }
+  phat::persistence_pairs pairs;
+  phat::compute_persistence_pairs<phat::twist_reduction>(pairs, matrix);
+  std::vector<std::size_t> betti(m + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) ++betti[dim_of[i]];
+  for (phat::index p = 0; p < pairs.get_num_pairs(); ++p) {
+    const auto [birth, death] = pairs.get_pair(p);
+    --betti[dim_of[birth]];
+    --betti[dim_of[death]];
+  }
+  return betti;
+}
+
+}  // namespace
+
+TopologyReport analyze_topology(const CellComplex& cc, bool compute_betti) {
+  TopologyReport r;
+  const int m = cc.manifold_dimension;
+  for (int j = 0; j <= m; ++j) {
+    r.cells.push_back(cc.interior[j].size());
+    r.euler_characteristic += (j % 2 ? -1LL : 1LL) * static_cast<long long>(cc.interior[j].size());
+  }
+  for (int j = 0; j < m; ++j) {
+    const std::size_t n = j < static_cast<int>(cc.boundary.size()) ? cc.boundary[j].size() : 0;
+    r.boundary_cells.push_back(n);
+    r.euler_characteristic += (j % 2 ? -1LL : 1LL) * static_cast<long long>(n);
+  }
+  r.manifold_problem = cc.interior[0].size() == 0 ? "the complex is empty" : check_manifold(cc);
+  r.is_manifold = r.manifold_problem.empty();
+  if (compute_betti) r.betti = betti_numbers(cc);
+  return r;
+}
+
+}  // namespace coxmesh

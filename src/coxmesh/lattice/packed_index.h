@@ -1,0 +1,102 @@
+// Compact storage of lattice objects (vertices, packed simplices): a hash index from fixed-width
+// keys of 32-bit words to dense ids 0, 1, 2, … in insertion order (deterministic output order).
+// Open addressing with linear probing; each slot holds 32 bits of the hash and the id, so probes
+// compare keys only on a hash match. Keys live contiguously in one array: no node per entry.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+#include <utility>
+#include <vector>
+
+#include "coxmesh/lattice/simplex.h"
+
+namespace coxmesh {
+
+class PackedKeyIndex {
+ public:
+  static constexpr std::uint32_t kAbsent = 0xFFFFFFFFu;
+
+  /// `words` = key width in 32-bit words (e.g. d for lattice vertices, packed_words(d) for simplices).
+  explicit PackedKeyIndex(int words = 1) : words_(words) { rehash(16); }
+
+  int words() const { return words_; }
+  std::uint32_t size() const { return size_; }
+  const std::uint32_t* key(std::uint32_t id) const { return keys_.data() + static_cast<std::size_t>(id) * words_; }
+
+  /// Id of the key, or kAbsent.
+  std::uint32_t find(const std::uint32_t* key, std::uint64_t hash) const {
+    const std::uint32_t tag = static_cast<std::uint32_t>(hash >> 32);
+    for (std::size_t s = hash & mask_;; s = (s + 1) & mask_) {
+      const std::uint64_t slot = slots_[s];
+      if (slot == 0) return kAbsent;
+      if (static_cast<std::uint32_t>(slot >> 32) == tag && equal(static_cast<std::uint32_t>(slot) - 1, key))
+        return static_cast<std::uint32_t>(slot) - 1;
+    }
+  }
+  std::uint32_t find(const std::uint32_t* key) const { return find(key, hash_words(key, words_)); }
+
+  /// {id, true} if the key was inserted, {existing id, false} if it was there.
+  std::pair<std::uint32_t, bool> insert(const std::uint32_t* key, std::uint64_t hash) {
+    const std::uint32_t tag = static_cast<std::uint32_t>(hash >> 32);
+    std::size_t s = hash & mask_;
+    for (;; s = (s + 1) & mask_) {
+      const std::uint64_t slot = slots_[s];
+      if (slot == 0) break;
+      if (static_cast<std::uint32_t>(slot >> 32) == tag && equal(static_cast<std::uint32_t>(slot) - 1, key))
+        return {static_cast<std::uint32_t>(slot) - 1, false};
+    }
+    if (size_ + 1 >= kAbsent) throw InputError("more than 2^32 - 2 entries in one index");
+    const std::uint32_t id = size_++;
+    keys_.insert(keys_.end(), key, key + words_);
+    slots_[s] = (static_cast<std::uint64_t>(tag) << 32) | (id + 1);
+    if (2 * static_cast<std::size_t>(size_) > slots_.size()) rehash(2 * slots_.size());  // load ≤ 1/2
+    return {id, true};
+  }
+  std::pair<std::uint32_t, bool> insert(const std::uint32_t* key) { return insert(key, hash_words(key, words_)); }
+
+  /// Simplex convenience: packs and hashes once.
+  std::uint32_t find(const Simplex& s) const {
+    std::uint32_t w[packed_words(kMaxDimension)];
+    pack(s, w);
+    return find(w);
+  }
+  std::pair<std::uint32_t, bool> insert(const Simplex& s) {
+    std::uint32_t w[packed_words(kMaxDimension)];
+    pack(s, w);
+    return insert(w);
+  }
+  Simplex simplex(std::uint32_t id, int d) const { return unpack(key(id), d); }
+
+  /// Bytes held (keys and slots), for memory reports.
+  std::size_t bytes() const { return keys_.capacity() * 4 + slots_.capacity() * 8; }
+  void reserve(std::size_t n) {
+    keys_.reserve(n * words_);
+    std::size_t cap = slots_.size();
+    while (cap < 2 * n + 2) cap *= 2;
+    if (cap != slots_.size()) rehash(cap);
+  }
+
+ private:
+  bool equal(std::uint32_t id, const std::uint32_t* key) const {
+    return std::memcmp(keys_.data() + static_cast<std::size_t>(id) * words_, key, 4 * static_cast<std::size_t>(words_)) == 0;
+  }
+  void rehash(std::size_t capacity) {
+    slots_.assign(capacity, 0);
+    mask_ = capacity - 1;
+    for (std::uint32_t id = 0; id < size_; ++id) {
+      const std::uint64_t h = hash_words(key(id), words_);
+      std::size_t s = h & mask_;
+      while (slots_[s] != 0) s = (s + 1) & mask_;
+      slots_[s] = (static_cast<std::uint64_t>(static_cast<std::uint32_t>(h >> 32)) << 32) | (id + 1);
+    }
+  }
+
+  int words_;
+  std::uint32_t size_ = 0;
+  std::size_t mask_ = 0;
+  std::vector<std::uint32_t> keys_;
+  std::vector<std::uint64_t> slots_;
+};
+
+}  // namespace coxmesh

@@ -1,0 +1,82 @@
+// Spec §3: M(τ)·λ = (1, 0, …, 0)ᵀ with the exact lexicographic rule; D̂ interpolated at the point.
+#include "coxmesh/oracle/implicit_oracle.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "coxmesh/oracle/transversality.h"
+
+namespace coxmesh {
+
+ImplicitOracle::ImplicitOracle(const Triangulation& triangulation, FunctionPtr f, FunctionPtr domain)
+    : triangulation_(triangulation), f_(std::move(f)), domain_(std::move(domain)), cache_(1) {
+  if (!f_) throw InputError("no implicit function given");
+  d_ = triangulation_.dimension();
+  k_ = f_->codimension();
+  if (f_->ambient_dimension() != d_)
+    throw InputError("the function is defined on R^" + std::to_string(f_->ambient_dimension()) +
+                     " but the triangulation is of R^" + std::to_string(d_));
+  if (k_ < 1 || k_ > d_) throw InputError("the number of equations must be between 1 and " + std::to_string(d_));
+  if (domain_ && (domain_->ambient_dimension() != d_ || domain_->codimension() != 1))
+    throw InputError("the domain function must map R^" + std::to_string(d_) + " to R");
+  stride_ = k_ + (domain_ ? 1 : 0);
+  cache_ = PackedKeyIndex(d_);
+  scratch_.resize(stride_ + d_);
+}
+
+const double* ImplicitOracle::values_at(const std::int32_t* v) {
+  const auto* key = reinterpret_cast<const std::uint32_t*>(v);
+  std::uint32_t id = PackedKeyIndex::kAbsent;
+  if (cache_enabled_) {
+    const std::uint64_t h = hash_words(key, d_);
+    auto [found, inserted] = cache_.insert(key, h);
+    if (!inserted) return values_.data() + static_cast<std::size_t>(found) * stride_;
+    id = found;
+    values_.resize(values_.size() + stride_);
+  }
+  double* out = id == PackedKeyIndex::kAbsent ? scratch_.data() : values_.data() + static_cast<std::size_t>(id) * stride_;
+  double* x = scratch_.data() + stride_;
+  triangulation_.cartesian(v, x);
+  f_->evaluate(x, out);
+  if (domain_) domain_->evaluate(x, out + k_);
+  ++evaluations_;
+  for (int i = 0; i < stride_; ++i)
+    if (!std::isfinite(out[i])) {
+      std::ostringstream os;
+      os.precision(17);
+      os << (i < k_ ? "the function" : "the domain function") << " is not finite (" << out[i] << ") at (";
+      for (int j = 0; j < d_; ++j) os << (j ? "," : "") << x[j];
+      os << ")";
+      throw EvaluationError(os.str());
+    }
+  return out;
+}
+
+Intersection ImplicitOracle::intersect(const Simplex& tau, double* point) {
+  const int n = k_ + 1;
+  double m[32 * 32];
+  double dval[32];
+  std::int32_t v[kMaxDimension];
+  for (int j = 0; j < n; ++j) {
+    tau.vertex(j, v);
+    const double* val = values_at(v);
+    m[j * n] = 1.0;
+    for (int i = 0; i < k_; ++i) m[j * n + 1 + i] = val[i];
+    if (domain_) dval[j] = val[k_];
+  }
+  double lambda[32];
+  if (!lexicographic_solve(n, m, lambda)) return {};
+  Intersection r{true, -1.0};
+  double xs[32 * kMaxDimension];
+  triangulation_.vertex_coordinates(tau, xs);
+  for (int i = 0; i < d_; ++i) point[i] = 0;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < d_; ++i) point[i] += lambda[j] * xs[j * d_ + i];
+  if (domain_) {
+    r.domain = 0;
+    for (int j = 0; j < n; ++j) r.domain += lambda[j] * dval[j];
+  }
+  return r;
+}
+
+}  // namespace coxmesh

@@ -1,0 +1,17 @@
+// Spec §3: the exact transversality rule (Allgower–Georg "completely labelled" simplices).
+#pragma once
+
+namespace coxmesh {
+
+/// The lexicographic (symbolic perturbation) test of a k-simplex against F̂ = 0, n = k + 1.
+/// `m` is the n × n matrix, column-major, column j = (1, F(v_j)). τ is transverse iff M is
+/// non-singular and every row of M^{-1} is lexicographically positive (its first non-zero entry
+/// is > 0): τ then meets F̂^{-1}(ε, ε², …, ε^k) for all small ε > 0, a regular level, so every
+/// (k+1)-simplex has exactly 0 or 2 transverse facets even when vertices lie on M.
+/// On success `lambda` (n values, ≥ 0, summing to 1) = the first column of M^{-1}: the barycentric
+/// coordinates of the unperturbed intersection point.
+/// Signs are decided in double precision when a forward error bound certifies them; otherwise
+/// (near-zero entries, ill-conditioned M) the inverse is recomputed in exact rational arithmetic.
+bool lexicographic_solve(int n, const double* m, double* lambda);
+
+}  // namespace coxmesh

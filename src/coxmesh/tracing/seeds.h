@@ -1,0 +1,24 @@
+// Seeds for tracing: projection onto M (Gauss–Newton) and automatic seeding in a box.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "coxmesh/oracle/implicit_function.h"
+#include "coxmesh/tracing/trace_manifold.h"
+
+namespace coxmesh {
+
+/// Projects x onto F^{-1}(0) by Gauss–Newton steps x ← x − J⁺F(x) (minimum-norm steps, J by
+/// central differences). Returns the point once |F| ≤ tolerance, or nothing when it does not
+/// converge in 100 steps or leaves finite values.
+std::optional<std::vector<double>> project_onto_manifold(const ImplicitFunction& f, std::vector<double> x,
+                                                         double tolerance = 1e-12);
+
+/// Seeds for every component of M inside `box` (and the domain, if given): `samples` points
+/// drawn from a fixed-seed generator are projected onto M; those that converge inside the box
+/// and the domain are kept (in draw order, deterministic).
+std::vector<std::vector<double>> find_seeds(const ImplicitFunction& f, const ImplicitFunction* domain, const Box& box,
+                                            int samples = 2000, std::uint64_t rng_seed = 1);
+
+}  // namespace coxmesh

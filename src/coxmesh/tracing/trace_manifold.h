@@ -1,0 +1,64 @@
+// Thesis §4.3 (manifold tracing), Algorithm of spec §2.2 and §2.3 (boundaries).
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "coxmesh/lattice/packed_index.h"
+#include "coxmesh/oracle/intersection_oracle.h"
+#include "coxmesh/triangulation/triangulation.h"
+
+namespace coxmesh {
+
+struct Box {
+  std::vector<double> lo, hi;  ///< d coordinates each, lo < hi
+  bool contains(const double* x) const;
+};
+
+struct TraceOptions {
+  std::size_t max_simplices = 20'000'000;  ///< stop (keeping the result) when |S| reaches this
+  std::optional<Box> box;                  ///< stop expanding at intersection points outside
+  int seed_search_rings = 3;               ///< rings of d-simplices searched around a seed
+  bool skip_unusable_seeds = false;        ///< ignore seeds that reach nothing (automatic seeding)
+};
+
+enum class TraceStatus { complete, max_simplices_reached, box_reached };
+
+/// The output of tracing (spec §2.1): S = the k-simplices meeting M̂ inside the domain, each with
+/// its intersection point, and S_∂ = the (k+1)-simplices meeting M̂ ∩ ∂D̂, with theirs. Ids are
+/// dense and in breadth-first discovery order (deterministic).
+struct TraceResult {
+  int ambient_dimension = 0, codimension = 0;
+  PackedKeyIndex simplices{1};           ///< S: packed k-simplices
+  std::vector<double> points;            ///< |S| × d intersection points
+  PackedKeyIndex boundary_simplices{1};  ///< S_∂: packed (k+1)-simplices
+  std::vector<double> boundary_points;   ///< |S_∂| × d
+  TraceStatus status = TraceStatus::complete;
+  std::string message;                   ///< why tracing stopped early (empty when complete)
+  std::uint64_t oracle_calls = 0, function_evaluations = 0;
+  int manifold_dimension() const { return ambient_dimension - codimension; }
+};
+
+/// Thrown when a seed cannot start the tracing (no simplex near it meets M̂, or it lies outside
+/// the domain): never a silently empty result.
+struct SeedError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Traces every component of M̂ that passes near a seed: locates each seed, finds the k-simplices
+/// meeting M̂ among the faces of the d-simplices around it (widening up to seed_search_rings rings
+/// of neighbours), then walks breadth-first from k-simplex to k-simplex through their common
+/// cofacets. Each candidate is looked up before the oracle is called, and the oracle is called at
+/// most once per k-simplex.
+///   seeds: points of R^d near M (project them first, see seeds.h). Throws SeedError, InputError,
+///   EvaluationError.
+///
+///   Triangulation T = Triangulation::coxeter(3).scaled(0.1);
+///   ImplicitOracle oracle(T, sphere(2, 3, 1.0));
+///   TraceResult r = trace_manifold(T, oracle, {{1.0, 0.0, 0.0}});
+TraceResult trace_manifold(const Triangulation& triangulation, IntersectionOracle& oracle,
+                           const std::vector<std::vector<double>>& seeds, const TraceOptions& options = {});
+
+}  // namespace coxmesh
