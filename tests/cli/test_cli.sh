@@ -50,5 +50,26 @@ fails_with "far point" "exceeds 2^30" "$bin" locate --point 1e12,0
 fails_with "d too large" "not supported" "$bin" locate --point "$(seq -s, 1 40)"
 fails_with "bad face dim" "outside" "$bin" faces --simplex "(0,0) [{0},{1,2}]" --dim 3
 
+# trace: the default torus, JSON keys, presets, boundary, errors.
+out=$("$bin" trace)
+check "trace default torus" "1" "$(grep -c 'Euler characteristic 0, Betti numbers (Z/2) 1 2 1' <<<"$out")"
+json=$("$bin" trace --preset sphere --json)
+for key in ambient_dimension manifold_dimension traced_simplices boundary_simplices cells boundary_cells \
+           euler_characteristic betti is_manifold function_evaluations timings; do
+  check "trace json has $key" "1" "$(grep -c "\"$key\"" <<<"$json")"
+done
+check "trace sphere chi" "1" "$(tr -d ' \n' <<<"$json" | grep -c '"euler_characteristic":2')"
+json=$("$bin" trace --preset sphere --domain-ball 0.5 --domain-center 1,0,0 --json | tr -d ' \n')
+check "trace cap chi" "1" "$(grep -c '"euler_characteristic":1' <<<"$json")"
+check "trace cap manifold" "1" "$(grep -c '"is_manifold":true' <<<"$json")"
+check "presets lists torus" "1" "$("$bin" presets | grep -c '^torus')"
+json=$("$bin" trace --preset moment-curve --dim 4 --domain-ball 100 --max-simplices 500 --json | tr -d ' \n')
+check "trace limit" "1" "$(grep -c '"complete":false' <<<"$json")"
+fails_with "trace seed far" "meets the manifold" "$bin" trace --preset sphere --seed 0,0,0
+fails_with "trace seed dims" "coordinates, expected 3" "$bin" trace --preset sphere --seed 1,0
+fails_with "trace unknown preset" "unknown preset" "$bin" trace --preset nope
+fails_with "trace seed outside domain" "outside the domain" "$bin" trace --preset sphere --domain-ball 0.3 --domain-center -1,0,0
+fails_with "trace bad box" "2d = 6" "$bin" trace --preset sphere --box 0,0,1
+
 echo "$passes passed, $fails failed"
 [[ $fails -eq 0 ]]
