@@ -4,7 +4,7 @@
 #include <phat/boundary_matrix.h>
 #include <phat/compute_persistence_pairs.h>
 #include <phat/persistence_pairs.h>
-#include <phat/representations/bit_tree_pivot_column.h>
+#include <phat/representations/full_pivot_column.h>
 #include <phat/algorithms/twist_reduction.h>
 
 namespace coxmesh {
@@ -58,7 +58,8 @@ std::vector<std::size_t> betti_numbers(const CellComplex& cc) {
     bd_base[j] = n;
     if (j < static_cast<int>(cc.boundary.size())) n += cc.boundary[j].size();
   }
-  phat::boundary_matrix<phat::bit_tree_pivot_column> matrix;
+  // full_pivot_column: bit_tree_pivot_column negates INT64_MIN, which UBSan rejects.
+  phat::boundary_matrix<phat::full_pivot_column> matrix;
   matrix.set_num_cols(static_cast<phat::index>(n));
   std::vector<phat::index> col;
   std::vector<int> dim_of(n);
