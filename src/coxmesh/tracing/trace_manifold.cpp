@@ -1,11 +1,15 @@
 // Thesis §4.3; spec §2.2 (tracing) and §2.3 (boundary). The one hot loop of coxmesh.
 #include "coxmesh/tracing/trace_manifold.h"
 
+#include <array>
+#include <atomic>
 #include <cmath>
+#include <mutex>
 #include <sstream>
 
 #include "coxmesh/lattice/cofaces.h"
 #include "coxmesh/lattice/faces.h"
+#include "coxmesh/util/parallel_for.h"
 
 namespace coxmesh {
 
@@ -31,9 +35,9 @@ std::string point_text(std::span<const double> x) {
 // oracle sees each k-simplex at most once.
 class Tracer {
  public:
-  Tracer(const Triangulation& t, IntersectionOracle& oracle, const TraceOptions& options)
-      : t_(t), oracle_(oracle), options_(options), d_(t.dimension()), k_(oracle.codimension()),
-        others_(packed_words(d_)) {
+  Tracer(const Triangulation& t, std::vector<IntersectionOracle*> oracles, const TraceOptions& options)
+      : t_(t), oracles_(std::move(oracles)), oracle_(*oracles_[0]), options_(options), d_(t.dimension()),
+        k_(oracle_.codimension()), others_(packed_words(d_)) {
     result_.ambient_dimension = d_;
     result_.codimension = k_;
     result_.simplices = PackedKeyIndex(packed_words(d_));
@@ -43,7 +47,8 @@ class Tracer {
   void add_seed(std::span<const double> seed, bool must_succeed);
   void walk();
   TraceResult finish() {
-    result_.function_evaluations = oracle_.function_evaluations();
+    for (IntersectionOracle* o : oracles_) result_.function_evaluations += o->function_evaluations();
+    for (std::uint64_t c : worker_calls_) result_.oracle_calls += c;
     return std::move(result_);
   }
 
@@ -57,9 +62,31 @@ class Tracer {
 
   Found classify(const Simplex& tau);
   void add_boundary(const Simplex& mu, std::uint32_t inside, std::uint32_t outside);
+  bool start_level();  // false when the simplex limit stops the walk
+
+  // ---- Parallel walk (level-synchronous) ----
+  // What one chunk of a level discovered, in encounter order: inside simplices (key, point, D̂)
+  // and boundary simplices (key, point). Merged in chunk order, so the result is deterministic.
+  struct ChunkOutput {
+    std::vector<std::uint32_t> inside_keys, boundary_keys;
+    std::vector<double> inside_data, boundary_points;
+    void clear() { inside_keys.clear(), boundary_keys.clear(), inside_data.clear(), boundary_points.clear(); }
+  };
+  // Tested simplices not in S, shared by the workers: 64 shards, one mutex each.
+  struct Shard {
+    std::mutex mutex;
+    PackedKeyIndex index{1};
+    std::vector<std::uint32_t> payload;  // kMiss, kOutsideBox, or index into data (+ kInsideBit)
+    std::vector<double> data;            // (d + 1) per transverse simplex: point, D̂
+  };
+  static constexpr std::uint32_t kInsideBit = 0x80000000u;
+  void walk_parallel();
+  void process_chunk(std::uint32_t begin, std::uint32_t end, int worker, ChunkOutput& out);
+  void merge(const ChunkOutput& out);
 
   const Triangulation& t_;
-  IntersectionOracle& oracle_;
+  std::vector<IntersectionOracle*> oracles_;
+  IntersectionOracle& oracle_;  // the first worker's; seeds and the sequential walk use it
   const TraceOptions& options_;
   const int d_, k_;
   TraceResult result_;
@@ -68,7 +95,13 @@ class Tracer {
   std::vector<std::uint32_t> other_payload_;  // kMiss, kOutsideBox or index into outside_
   std::vector<double> outside_;               // (d + 1) per transverse simplex outside: point, D̂
   std::uint32_t head_ = 0;                    // S[head_..] is the breadth-first queue
+  std::uint32_t level_end_ = 0;               // end of the current breadth-first level
+  std::size_t last_progress_ = 0;
   std::vector<double> point_;
+  std::vector<std::uint64_t> worker_calls_;   // oracle calls of the parallel walk, per worker
+  std::vector<std::unique_ptr<Shard>> shards_;
+  std::vector<ChunkOutput> chunks_;
+  std::atomic<bool> box_reached_{false};
 };
 
 Tracer::Found Tracer::classify(const Simplex& tau) {
@@ -115,15 +148,28 @@ void Tracer::add_boundary(const Simplex& mu, std::uint32_t inside, std::uint32_t
   for (int i = 0; i < d_; ++i) result_.boundary_points.push_back(p[i] + t * (q[i] - p[i]));
 }
 
+// The simplex limit is checked where a breadth-first level starts, in the sequential and the
+// parallel walk alike, so a truncated result is also the same for every thread count.
+bool Tracer::start_level() {
+  level_end_ = result_.simplices.size();
+  if (result_.simplices.size() >= options_.max_simplices) {
+    result_.status = TraceStatus::max_simplices_reached;
+    return false;
+  }
+  if (options_.progress && result_.simplices.size() >= last_progress_ + 65536) {
+    last_progress_ = result_.simplices.size();
+    options_.progress(last_progress_);
+  }
+  return true;
+}
+
 void Tracer::walk() {
+  if (oracles_.size() > 1) return walk_parallel();
   Simplex tau, mu, facet;
   CofaceEnumerator cofacets;
   FaceEnumerator facets;
   for (; head_ < result_.simplices.size(); ++head_) {
-    if (result_.simplices.size() >= options_.max_simplices) {
-      result_.status = TraceStatus::max_simplices_reached;
-      return;
-    }
+    if (head_ >= level_end_ && !start_level()) return;
     tau = result_.simplices.simplex(head_, d_);
     cofacets.reset(tau, k_ + 1);
     while (cofacets.next(mu)) {
@@ -135,6 +181,111 @@ void Tracer::walk() {
       }
     }
   }
+}
+
+void Tracer::walk_parallel() {
+  constexpr std::uint32_t kChunk = 128;
+  if (shards_.empty()) {
+    for (int s = 0; s < 64; ++s) {
+      shards_.push_back(std::make_unique<Shard>());
+      shards_.back()->index = PackedKeyIndex(packed_words(d_));
+    }
+    worker_calls_.assign(oracles_.size(), 0);
+  }
+  while (head_ < result_.simplices.size()) {
+    if (!start_level()) return;
+    const std::uint32_t begin = head_, end = level_end_;
+    const std::size_t n = (end - begin + kChunk - 1) / kChunk;
+    if (chunks_.size() < n) chunks_.resize(n);
+    parallel_for(n, static_cast<int>(oracles_.size()), [&](std::size_t c, int worker) {
+      chunks_[c].clear();
+      const std::uint32_t a = begin + static_cast<std::uint32_t>(c) * kChunk;
+      process_chunk(a, std::min(end, a + kChunk), worker, chunks_[c]);
+    });
+    for (std::size_t c = 0; c < n; ++c) merge(chunks_[c]);
+    if (box_reached_.load()) result_.status = TraceStatus::box_reached;
+    head_ = end;
+  }
+}
+
+// Reads S (not modified during the phase), looks up and fills the sharded table of tested
+// simplices, and writes discoveries to `out` only.
+void Tracer::process_chunk(std::uint32_t begin, std::uint32_t end, int worker, ChunkOutput& out) {
+  IntersectionOracle& oracle = *oracles_[worker];
+  const int words = packed_words(d_);
+  Simplex tau, mu, facet;
+  CofaceEnumerator cofacets;
+  FaceEnumerator facets;
+  std::uint32_t key[packed_words(kMaxDimension)], mu_key[packed_words(kMaxDimension)];
+  double found[kMaxDimension + 1];  // point, D̂ of a transverse simplex
+  for (std::uint32_t id = begin; id < end; ++id) {
+    tau = result_.simplices.simplex(id, d_);
+    cofacets.reset(tau, k_ + 1);
+    while (cofacets.next(mu)) {
+      facets.reset(mu, k_);
+      while (facets.next(facet)) {
+        if (facet == tau) continue;
+        pack(facet, key);
+        const std::uint64_t h = hash_words(key, words);
+        if (result_.simplices.find(key, h) != PackedKeyIndex::kAbsent) continue;
+        Shard& shard = *shards_[h >> 58];
+        std::uint32_t payload = kMiss;
+        bool known = false;
+        {
+          std::lock_guard<std::mutex> lock(shard.mutex);
+          if (const std::uint32_t t = shard.index.find(key, h); t != PackedKeyIndex::kAbsent) {
+            known = true;
+            payload = shard.payload[t];
+            if (payload < kOutsideBox)
+              std::copy_n(shard.data.data() + static_cast<std::size_t>(payload & ~kInsideBit) * (d_ + 1), d_ + 1, found);
+          }
+        }
+        if (!known) {
+          ++worker_calls_[worker];
+          const Intersection x = oracle.intersect(facet, found);
+          found[d_] = x.domain;
+          if (!x.hit) payload = kMiss;
+          else if (options_.box && !options_.box->contains(found)) payload = kOutsideBox;
+          else payload = x.domain < 0 ? kInsideBit : 0;
+          std::lock_guard<std::mutex> lock(shard.mutex);
+          if (shard.index.insert(key, h).second) {
+            if (payload < kOutsideBox) {
+              payload |= static_cast<std::uint32_t>(shard.data.size() / (d_ + 1));
+              shard.data.insert(shard.data.end(), found, found + d_ + 1);
+            }
+            shard.payload.push_back(payload);
+          }
+        }
+        if (payload == kOutsideBox) box_reached_.store(true, std::memory_order_relaxed);
+        if (payload >= kOutsideBox) continue;
+        if (payload & kInsideBit) {
+          out.inside_keys.insert(out.inside_keys.end(), key, key + words);
+          out.inside_data.insert(out.inside_data.end(), found, found + d_ + 1);
+        } else {  // transverse outside the domain: μ crosses the boundary (see add_boundary)
+          const double* p = result_.points.data() + static_cast<std::size_t>(id) * d_;
+          const double dp = domain_values_[id], t = dp / (dp - found[d_]);
+          pack(mu, mu_key);
+          out.boundary_keys.insert(out.boundary_keys.end(), mu_key, mu_key + words);
+          for (int i = 0; i < d_; ++i) out.boundary_points.push_back(p[i] + t * (found[i] - p[i]));
+        }
+      }
+    }
+  }
+}
+
+void Tracer::merge(const ChunkOutput& out) {
+  const int words = packed_words(d_);
+  for (std::size_t r = 0; r * words < out.inside_keys.size(); ++r)
+    if (result_.simplices.insert(out.inside_keys.data() + r * words).second) {
+      const double* p = out.inside_data.data() + r * (d_ + 1);
+      result_.points.insert(result_.points.end(), p, p + d_);
+      domain_values_.push_back(p[d_]);
+    }
+  for (std::size_t r = 0; r * words < out.boundary_keys.size(); ++r)
+    if (result_.boundary_simplices.insert(out.boundary_keys.data() + r * words).second) {
+      const double* p = out.boundary_points.data() + r * d_;
+      result_.boundary_points.insert(result_.boundary_points.end(), p, p + d_);
+    }
 }
 
 void Tracer::add_seed(std::span<const double> seed, bool must_succeed) {
@@ -181,16 +332,19 @@ void Tracer::add_seed(std::span<const double> seed, bool must_succeed) {
 
 }  // namespace
 
-TraceResult trace_manifold(const Triangulation& triangulation, IntersectionOracle& oracle,
-                           const std::vector<std::vector<double>>& seeds, const TraceOptions& options) {
+namespace {
+
+TraceResult run_tracer(const Triangulation& triangulation, std::vector<IntersectionOracle*> oracles,
+                       const std::vector<std::vector<double>>& seeds, const TraceOptions& options) {
   const int d = triangulation.dimension();
-  if (oracle.ambient_dimension() != d)
-    throw InputError("the oracle works in R^" + std::to_string(oracle.ambient_dimension()) +
-                     " but the triangulation is of R^" + std::to_string(d));
+  for (IntersectionOracle* o : oracles)
+    if (o->ambient_dimension() != d)
+      throw InputError("the oracle works in R^" + std::to_string(o->ambient_dimension()) +
+                       " but the triangulation is of R^" + std::to_string(d));
   if (options.box && (static_cast<int>(options.box->lo.size()) != d || static_cast<int>(options.box->hi.size()) != d))
     throw InputError("the box must have " + std::to_string(d) + " coordinates per corner");
   if (seeds.empty()) throw SeedError("no seed given");
-  Tracer tracer(triangulation, oracle, options);
+  Tracer tracer(triangulation, std::move(oracles), options);
   for (const auto& seed : seeds) {
     tracer.add_seed(seed, !options.skip_unusable_seeds);
     tracer.walk();
@@ -202,6 +356,26 @@ TraceResult trace_manifold(const Triangulation& triangulation, IntersectionOracl
   else if (result.status == TraceStatus::box_reached)
     result.message = "the manifold leaves the bounding box; the output is cut there";
   return result;
+}
+
+}  // namespace
+
+TraceResult trace_manifold(const Triangulation& triangulation, IntersectionOracle& oracle,
+                           const std::vector<std::vector<double>>& seeds, const TraceOptions& options) {
+  return run_tracer(triangulation, {&oracle}, seeds, options);
+}
+
+TraceResult trace_manifold(const Triangulation& triangulation, const OracleFactory& make_oracle,
+                           const std::vector<std::vector<double>>& seeds, const TraceOptions& options) {
+  const int workers = resolve_threads(options.threads);
+  std::vector<std::unique_ptr<IntersectionOracle>> owned;
+  std::vector<IntersectionOracle*> oracles;
+  for (int w = 0; w < workers; ++w) {
+    owned.push_back(make_oracle());
+    if (!owned.back()) throw InputError("the oracle factory returned no oracle");
+    oracles.push_back(owned.back().get());
+  }
+  return run_tracer(triangulation, std::move(oracles), seeds, options);
 }
 
 }  // namespace coxmesh

@@ -1,6 +1,8 @@
 // Thesis §4.3 (manifold tracing), Algorithm of spec §2.2 and §2.3 (boundaries).
 #pragma once
 
+#include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -22,6 +24,11 @@ struct TraceOptions {
   std::optional<Box> box;                  ///< stop expanding at intersection points outside
   int seed_search_rings = 3;               ///< rings of d-simplices searched around a seed
   bool skip_unusable_seeds = false;        ///< ignore seeds that reach nothing (automatic seeding)
+  /// Worker threads for the OracleFactory overload (0 = all hardware threads). The result, order
+  /// included, is the same for every thread count.
+  int threads = 1;
+  /// Called from the walk every 65536 processed simplices with |S| so far (progress displays).
+  std::function<void(std::size_t traced)> progress;
 };
 
 enum class TraceStatus { complete, max_simplices_reached, box_reached };
@@ -59,6 +66,19 @@ struct SeedError : std::runtime_error {
 ///   ImplicitOracle oracle(T, sphere(2, 3, 1.0));
 ///   TraceResult r = trace_manifold(T, oracle, {{1.0, 0.0, 0.0}});
 TraceResult trace_manifold(const Triangulation& triangulation, IntersectionOracle& oracle,
+                           const std::vector<std::vector<double>>& seeds, const TraceOptions& options = {});
+
+/// Makes one oracle per worker thread (oracles cache and are not thread-safe; the functions they
+/// share must be safe to evaluate concurrently, as the built-ins are).
+using OracleFactory = std::function<std::unique_ptr<IntersectionOracle>()>;
+
+/// Multi-threaded tracing with options.threads workers: level-synchronous breadth-first search.
+/// Each level's simplices are processed in parallel chunks (lookups in S, a sharded table of tested
+/// simplices, per-worker oracles and buffers; no global lock), then the chunks' discoveries are
+/// merged in chunk order, so S, S_∂ and their ids are identical for 1, 2, … N threads and equal to
+/// the single-oracle overload's. Function evaluations are counted over all workers (each worker
+/// caches its own lattice vertices).
+TraceResult trace_manifold(const Triangulation& triangulation, const OracleFactory& make_oracle,
                            const std::vector<std::vector<double>>& seeds, const TraceOptions& options = {});
 
 }  // namespace coxmesh

@@ -1,0 +1,79 @@
+// Multi-threaded tracing gives the same result, order and bits included, for every thread count,
+// equal to the sequential walk's; also when a limit or a box truncates the walk.
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "coxmesh/oracle/implicit_oracle.h"
+#include "coxmesh/tracing/trace_manifold.h"
+
+using namespace coxmesh;
+
+namespace {
+
+struct Case {
+  std::string name;
+  FunctionPtr f, domain;
+  Triangulation t;
+  TraceOptions options;
+  std::vector<double> seed;
+};
+
+void expect_identical(const TraceResult& a, const TraceResult& b, const std::string& what) {
+  ASSERT_EQ(a.simplices.size(), b.simplices.size()) << what;
+  ASSERT_EQ(a.boundary_simplices.size(), b.boundary_simplices.size()) << what;
+  const int w = a.simplices.words();
+  for (std::uint32_t i = 0; i < a.simplices.size(); ++i)
+    ASSERT_EQ(std::memcmp(a.simplices.key(i), b.simplices.key(i), 4 * w), 0) << what << " simplex " << i;
+  for (std::uint32_t i = 0; i < a.boundary_simplices.size(); ++i)
+    ASSERT_EQ(std::memcmp(a.boundary_simplices.key(i), b.boundary_simplices.key(i), 4 * w), 0) << what;
+  ASSERT_EQ(a.points.size(), b.points.size());
+  EXPECT_EQ(std::memcmp(a.points.data(), b.points.data(), 8 * a.points.size()), 0) << what;
+  ASSERT_EQ(a.boundary_points.size(), b.boundary_points.size());
+  EXPECT_EQ(std::memcmp(a.boundary_points.data(), b.boundary_points.data(), 8 * a.boundary_points.size()), 0) << what;
+  EXPECT_EQ(a.status, b.status) << what;
+}
+
+}  // namespace
+
+TEST(ParallelTracing, IdenticalForEveryThreadCount) {
+  std::vector<Case> cases;
+  cases.push_back({"S2 in R3", sphere(2, 3, 1.0), nullptr, Triangulation::coxeter(3).with_longest_edge(0.08), {}, {}});
+  cases.push_back({"torus, FK, vertices on M", torus(1.0, 0.5), nullptr, Triangulation::freudenthal(3).scaled(0.125), {}, {}});
+  cases.push_back({"S2 in R4", sphere(2, 4, 1.0), nullptr, Triangulation::coxeter(4).with_longest_edge(0.25).rotated(3), {}, {}});
+  cases.push_back({"flat torus cut", product(sphere(1, 2, 1.0), sphere(1, 2, 1.0)), half_space_domain({1, 1, 0, 0}, 0.5),
+                   Triangulation::coxeter(4).with_longest_edge(0.3), {}, {-1, 0, 1, 0}});
+  {
+    TraceOptions limit;
+    limit.max_simplices = 3000;
+    cases.push_back({"limit", moment_curve(4), nullptr, Triangulation::coxeter(4).with_longest_edge(0.2), limit, {}});
+    TraceOptions box;
+    box.box = Box{{-2, -2, -0.3}, {2, 2, 2}};
+    cases.push_back({"box", sphere(2, 3, 1.0), nullptr, Triangulation::coxeter(3).with_longest_edge(0.1), box, {}});
+  }
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const std::vector<std::vector<double>> seeds = {c.seed.empty() ? c.f->seed() : c.seed};
+    ImplicitOracle oracle(c.t, c.f, c.domain);
+    const TraceResult sequential = trace_manifold(c.t, oracle, seeds, c.options);
+    EXPECT_GT(sequential.simplices.size(), 500u);
+    for (int threads : {1, 2, 3, 4, 2}) {
+      TraceOptions options = c.options;
+      options.threads = threads;
+      const TraceResult parallel = trace_manifold(
+          c.t, [&] { return std::make_unique<ImplicitOracle>(c.t, c.f, c.domain); }, seeds, options);
+      expect_identical(sequential, parallel, c.name + ", " + std::to_string(threads) + " threads");
+    }
+  }
+}
+
+TEST(ParallelTracing, ErrorsFromWorkersReachTheCaller) {
+  FunctionPtr bad = make_function(3, 1, [](const double* x, double* v) {
+    v[0] = x[0] > 0.7 ? NAN : x[0] * x[0] + x[1] * x[1] + x[2] * x[2] - 1;
+  }, std::vector<double>{0, 0, 1});
+  const Triangulation t = Triangulation::coxeter(3).with_longest_edge(0.1);
+  TraceOptions options;
+  options.threads = 2;
+  EXPECT_THROW(trace_manifold(t, [&] { return std::make_unique<ImplicitOracle>(t, bad); }, {bad->seed()}, options),
+               EvaluationError);
+}
