@@ -1,16 +1,23 @@
-// coxmesh trace: mesh a manifold given by a preset (thesis Ch. 4; spec §2).
-#include <sys/resource.h>
+// coxmesh trace: mesh a manifold given by a preset or by equations typed as text (thesis Ch. 4;
+// spec §2), report its topology and write it to a file.
+#include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <iostream>
+#include <sstream>
 
 #include "commands.h"
 #include "common.h"
 #include "coxmesh/cell_complex/cell_complex.h"
 #include "coxmesh/cell_complex/topology.h"
+#include "coxmesh/io/atomic_file.h"
+#include "coxmesh/io/write_mesh.h"
+#include "coxmesh/oracle/expression_function.h"
 #include "coxmesh/oracle/implicit_oracle.h"
 #include "coxmesh/tracing/seeds.h"
 #include "presets.h"
+#include "report.h"
 
 namespace coxmesh::cli {
 
@@ -18,59 +25,140 @@ namespace {
 
 struct TraceCliOptions {
   std::string preset = "torus";
+  std::string function;
   PresetParameters params;
   std::string center;
   TriangulationOptions tri;
-  std::vector<std::string> seeds;
-  bool auto_seed = false, json = false;
+  std::vector<std::string> seeds, domains;
+  bool auto_seed = false, json = false, quiet = false, no_output = false;
   std::size_t max_simplices = 20'000'000;
+  int threads = 1;  // parallel tracing evaluates F once per vertex per worker, so 1 by default
   std::string box;
   std::optional<double> domain_ball;
   std::string domain_center, cut;
+  std::string output, format, project;
+  std::vector<const CLI::Option*> preset_only;  // options that make no sense with --function
 };
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Progress on stderr once a run has lasted about a second: one updated line on a terminal, plain
+// lines (at most one every 2 s) otherwise. Never used with --json or --quiet.
+class ProgressDisplay {
+ public:
+  ProgressDisplay() : tty_(isatty(STDERR_FILENO) != 0), start_(Clock::now()), last_(start_) {}
+  ~ProgressDisplay() { clear(); }
+
+  void traced(std::size_t simplices) {
+    const auto now = Clock::now();
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    if (elapsed < 1.0 || (shown_ && std::chrono::duration<double>(now - last_).count() < (tty_ ? 0.1 : 2.0))) return;
+    last_ = now;
+    show("tracing: " + std::to_string(simplices) + " simplices, " +
+         std::to_string(static_cast<long long>(simplices / elapsed)) + " simplices/s, " + seconds(elapsed));
+  }
+  // A later phase (cell complex, topology, writing): shown only when progress is already on screen.
+  void phase(const std::string& what) {
+    if (shown_) show(what + "... (" + seconds(seconds_since(start_)) + ")");
+  }
+  void clear() {
+    if (tty_ && shown_) std::fputs("\r\033[K", stderr);
+    shown_ = false;
+  }
+
+ private:
+  static std::string seconds(double s) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.1f s", s);
+    return buffer;
+  }
+  void show(const std::string& line) {
+    if (tty_) std::fprintf(stderr, "\r\033[K  %s", line.c_str());
+    else std::fprintf(stderr, "coxmesh: %s\n", line.c_str());
+    std::fflush(stderr);
+    shown_ = true;
+  }
+
+  bool tty_, shown_ = false;
+  Clock::time_point start_, last_;
+};
+
+// max(a, b): the intersection of two domains {a < 0} and {b < 0}.
+FunctionPtr intersect_domains(FunctionPtr a, FunctionPtr b) {
+  if (!a) return b;
+  const int d = a->ambient_dimension();
+  return make_function(d, 1, [a, b](const double* x, double* v) {
+    double va, vb;
+    a->evaluate(x, &va);
+    b->evaluate(x, &vb);
+    v[0] = std::max(va, vb);
+  });
 }
 
 void run(TraceCliOptions o) {
-  if (!o.center.empty()) o.params.center = parse_point(o.center, "--center");
-  const Preset preset = make_preset(o.preset, o.params);
-  const FunctionPtr f = preset.function;
+  // The manifold and its domain. Built again for every worker thread: expression functions
+  // (muparser) are not thread-safe, so each worker gets its own.
+  double default_edge = 0, extent = 2.0;
+  std::string name;
+  const bool from_text = !o.function.empty();
+  if (from_text)
+    for (const CLI::Option* opt : o.preset_only)
+      if (opt->count()) throw InputError(opt->get_name() + " is a preset parameter; it does not apply to --function");
+  if (!from_text && !o.center.empty()) o.params.center = parse_point(o.center, "--center");
+  auto make_problem = [&o, from_text]() -> std::pair<FunctionPtr, FunctionPtr> {
+    FunctionPtr f, domain;
+    if (from_text) {
+      f = expression_function(o.function, o.params.dim);
+    } else {
+      const Preset preset = make_preset(o.preset, o.params);
+      f = preset.function;
+      domain = preset.domain;
+    }
+    const int d = f->ambient_dimension();
+    // Domains: the preset's (replaced by --domain-ball if given), then each --domain and --cut,
+    // intersected by max.
+    if (o.domain_ball) {
+      std::vector<double> c = o.domain_center.empty() ? std::vector<double>(d, 0.0) : parse_point(o.domain_center, "--domain-center");
+      if (static_cast<int>(c.size()) != d) throw InputError("--domain-center must have " + std::to_string(d) + " coordinates");
+      domain = ball_domain(c, *o.domain_ball);
+    }
+    for (const std::string& text : o.domains) domain = intersect_domains(domain, expression_domain(text, d));
+    if (!o.cut.empty()) {
+      std::vector<double> nc = parse_point(o.cut, "--cut");
+      if (static_cast<int>(nc.size()) != d + 1) throw InputError("--cut needs d+1 = " + std::to_string(d + 1) + " numbers n1,...,nd,c");
+      const double c = nc.back();
+      nc.pop_back();
+      domain = intersect_domains(domain, half_space_domain(nc, c));
+    }
+    return {f, domain};
+  };
+  auto [f, domain] = make_problem();
+  if (from_text) {
+    name = "\"" + o.function + "\"";
+  } else {
+    const Preset preset = make_preset(o.preset, o.params);
+    default_edge = preset.edge_length;
+    extent = preset.extent * 1.25;
+    name = o.preset;
+  }
   const int d = f->ambient_dimension();
 
-  FunctionPtr domain = preset.domain;
-  if (o.domain_ball) {
-    std::vector<double> c = o.domain_center.empty() ? std::vector<double>(d, 0.0) : parse_point(o.domain_center, "--domain-center");
-    if (static_cast<int>(c.size()) != d) throw InputError("--domain-center must have " + std::to_string(d) + " coordinates");
-    domain = ball_domain(c, *o.domain_ball);
+  // The output file is checked before the (possibly long) trace: format and projection spec.
+  std::string output = o.output;
+  if (output.empty() && !o.no_output && !o.json) output = (from_text ? std::string("manifold") : o.preset) + ".vtu";
+  if (o.no_output && !o.output.empty()) throw InputError("--no-output contradicts -o " + o.output);
+  const bool write = !output.empty();
+  const MeshFormat format = !write ? MeshFormat::vtu : o.format.empty() ? format_of_path(output) : parse_format(o.format);
+  if (write) {
+    check_writable(output);
+    if (format != MeshFormat::cxm) make_projection(o.project, d, {});  // the spec fits d (pca and files: checked again on the points)
   }
-  if (!o.cut.empty()) {
-    std::vector<double> nc = parse_point(o.cut, "--cut");
-    if (static_cast<int>(nc.size()) != d + 1) throw InputError("--cut needs d+1 = " + std::to_string(d + 1) + " numbers n1,...,nd,c");
-    const double c = nc.back();
-    nc.pop_back();
-    FunctionPtr half = half_space_domain(nc, c);
-    if (domain) {
-      FunctionPtr a = domain;
-      domain = make_function(d, 1, [a, half](const double* x, double* v) {  // intersection: max
-        double va, vb;
-        a->evaluate(x, &va);
-        half->evaluate(x, &vb);
-        v[0] = std::max(va, vb);
-      });
-    } else {
-      domain = half;
-    }
-  }
-
-  TriangulationOptions tri = o.tri;
-  if (!tri.scale && !tri.edge_length && tri.matrix_file.empty()) tri.edge_length = preset.edge_length;
-  const Triangulation t = tri.build(d);
 
   TraceOptions options;
   options.max_simplices = o.max_simplices;
-  Box search_box{std::vector<double>(d, -preset.extent * 1.25), std::vector<double>(d, preset.extent * 1.25)};
+  Box search_box{std::vector<double>(d, -extent), std::vector<double>(d, extent)};
   if (!o.box.empty()) {
     const std::vector<double> b = parse_point(o.box, "--box");
     if (static_cast<int>(b.size()) != 2 * d)
@@ -78,9 +166,17 @@ void run(TraceCliOptions o) {
     Box box{std::vector<double>(b.begin(), b.begin() + d), std::vector<double>(b.begin() + d, b.end())};
     for (int i = 0; i < d; ++i)
       if (!(box.lo[i] < box.hi[i])) throw InputError("--box: lo must be below hi in every coordinate");
-    options.box = box;
     search_box = box;
   }
+  if (!o.box.empty() || from_text) options.box = search_box;  // equations: the default box bounds the walk
+  if (from_text) {  // default scale: 40 edges across the narrowest side of the box
+    default_edge = search_box.hi[0] - search_box.lo[0];
+    for (int i = 1; i < d; ++i) default_edge = std::min(default_edge, search_box.hi[i] - search_box.lo[i]);
+    default_edge /= 40;
+  }
+  TriangulationOptions tri = o.tri;
+  if (!tri.scale && !tri.edge_length && tri.matrix_file.empty()) tri.edge_length = default_edge;
+  const Triangulation t = tri.build(d);
 
   std::vector<std::vector<double>> seeds;
   for (const std::string& s : o.seeds) {
@@ -90,71 +186,111 @@ void run(TraceCliOptions o) {
     seeds.push_back(project_onto_manifold(*f, x).value_or(x));
   }
   if (seeds.empty() && !f->seed().empty()) seeds.push_back(f->seed());
-  if (o.auto_seed) {
+  std::size_t automatic = 0;
+  if (o.auto_seed || seeds.empty()) {
     auto found = find_seeds(*f, domain.get(), search_box);
+    automatic = found.size();
+    if (seeds.empty() && found.empty()) {
+      std::ostringstream box_text;
+      for (int i = 0; i < d; ++i) box_text << (i ? " x [" : "[") << search_box.lo[i] << "," << search_box.hi[i] << "]";
+      throw InputError("no point of the manifold found in the box " + box_text.str() +
+                       (domain ? " inside the domain" : "") + ": give --box lo1,...,lod,hi1,...,hid or --seed");
+    }
+    options.skip_unusable_seeds = true;
     seeds.insert(seeds.end(), found.begin(), found.end());
-    options.skip_unusable_seeds = !o.seeds.empty() || found.size() > 0;
   }
-  if (seeds.empty()) throw InputError("no seed: give --seed or --auto-seed");
 
-  const auto t0 = std::chrono::steady_clock::now();
-  ImplicitOracle oracle(t, f, domain);
-  TraceResult traced = trace_manifold(t, oracle, seeds, options);
+  std::optional<ProgressDisplay> progress;
+  if (!o.json && !o.quiet) {
+    progress.emplace();
+    options.progress = [&progress](std::size_t traced) { progress->traced(traced); };
+  }
+
+  const auto t0 = Clock::now();
+  options.threads = o.threads;
+  bool first_worker = true;
+  TraceResult traced = trace_manifold(t, [&]() -> std::unique_ptr<IntersectionOracle> {
+    if (first_worker) {  // the main thread's functions; fresh ones for the other workers
+      first_worker = false;
+      return std::make_unique<ImplicitOracle>(t, f, domain);
+    }
+    auto [fw, dw] = make_problem();
+    return std::make_unique<ImplicitOracle>(t, fw, dw);
+  }, seeds, options);
+  if (traced.simplices.size() == 0)
+    throw InputError("no simplex near the " + std::to_string(seeds.size()) +
+                     " seeds meets the manifold: the triangulation is too coarse for it (give a smaller --edge-length)");
   const double trace_s = seconds_since(t0);
-  const std::size_t n_simplices = traced.simplices.size(), n_boundary = traced.boundary_simplices.size();
   const auto status = traced.status;
   const std::string message = traced.message;
   const std::uint64_t evaluations = traced.function_evaluations, oracle_calls = traced.oracle_calls;
 
-  const auto t1 = std::chrono::steady_clock::now();
+  if (progress) progress->phase("building the cell complex");
+  const auto t1 = Clock::now();
   const CellComplex cc = build_cell_complex(std::move(traced));
   const double complex_s = seconds_since(t1);
-  const auto t2 = std::chrono::steady_clock::now();
+  if (progress) progress->phase("computing the topology");
+  const auto t2 = Clock::now();
   const TopologyReport topo = analyze_topology(cc);
   const double topo_s = seconds_since(t2);
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
+
+  WrittenCounts written;
+  double write_s = 0;
+  if (write) {
+    if (progress) progress->phase("writing " + output);
+    WriteOptions wo;
+    wo.projection = o.project;
+    wo.native.source = from_text ? "function " + o.function : "preset " + o.preset;
+    for (const std::string& text : o.domains) wo.native.source += "; domain " + text;
+    if (o.domain_ball) wo.native.source += "; domain-ball " + std::to_string(*o.domain_ball);
+    if (!o.cut.empty()) wo.native.source += "; cut " + o.cut;
+    wo.native.complete = status == TraceStatus::complete;
+    wo.native.message = message;
+    for (int r = 0; r < d; ++r)
+      for (int c = 0; c < d; ++c) wo.native.matrix.push_back(t.matrix()(r, c));
+    wo.native.offset.assign(t.offset().data(), t.offset().data() + d);
+    wo.native.function_evaluations = evaluations;
+    wo.native.oracle_calls = oracle_calls;
+    const auto t3 = Clock::now();
+    written = write_mesh(output, format, cc, wo);
+    write_s = seconds_since(t3);
+  }
+  if (progress) progress->clear();
 
   if (o.json) {
-    nlohmann::json j;
-    j["preset"] = o.preset;
-    j["ambient_dimension"] = d;
-    j["manifold_dimension"] = cc.manifold_dimension;
-    j["traced_simplices"] = n_simplices;
-    j["boundary_simplices"] = n_boundary;
-    j["cells"] = topo.cells;
-    j["boundary_cells"] = topo.boundary_cells;
-    j["euler_characteristic"] = topo.euler_characteristic;
-    j["betti"] = topo.betti;
-    j["components"] = topo.betti.empty() ? 0 : topo.betti[0];
-    j["is_manifold"] = topo.is_manifold;
-    if (!topo.is_manifold) j["manifold_problem"] = topo.manifold_problem;
+    nlohmann::json j = topology_json(cc, topo);
+    if (from_text) j["function"] = o.function;
+    else j["preset"] = o.preset;
     j["function_evaluations"] = evaluations;
     j["oracle_calls"] = oracle_calls;
     j["seeds"] = seeds.size();
+    j["automatic_seeds"] = automatic;
     j["complete"] = status == TraceStatus::complete;
     if (!message.empty()) j["message"] = message;
     j["timings"] = {{"trace_seconds", trace_s}, {"cell_complex_seconds", complex_s}, {"topology_seconds", topo_s}};
-    j["cell_complex_bytes"] = cc.bytes();
-    j["peak_memory_bytes"] = static_cast<long long>(usage.ru_maxrss) * 1024;
+    if (write) {
+      j["timings"]["write_seconds"] = write_s;
+      j["output"] = {{"path", output}, {"format", format_name(format)}, {"points", written.points},
+                     {"cells", written.cells}, {"skipped_cells", written.skipped}};
+    }
+    j["peak_memory_bytes"] = peak_memory_bytes();
     std::cout << j.dump(2) << "\n";
-  } else {
-    auto list = [](const std::vector<std::size_t>& v) {
-      std::string s;
-      for (std::size_t i = 0; i < v.size(); ++i) s += (i ? " " : "") + std::to_string(v[i]);
-      return s;
-    };
-    std::cout << o.preset << ": " << cc.manifold_dimension << "-manifold in R^" << d << "\n"
-              << "  traced simplices   " << n_simplices << " (" << n_boundary << " on the boundary)\n"
-              << "  cells by dimension " << list(topo.cells);
-    if (n_boundary) std::cout << "  (boundary: " << list(topo.boundary_cells) << ")";
-    std::cout << "\n  Euler characteristic " << topo.euler_characteristic << ", Betti numbers (Z/2) "
-              << list(topo.betti) << "\n"
-              << "  manifold check     " << (topo.is_manifold ? "passed" : "FAILED: " + topo.manifold_problem) << "\n"
-              << "  F evaluations      " << evaluations << " (" << oracle_calls << " oracle calls)\n"
-              << "  time               trace " << trace_s << " s (" << static_cast<long long>(n_simplices / std::max(trace_s, 1e-9))
-              << " simplices/s), cell complex " << complex_s << " s, topology " << topo_s << " s\n"
-              << "  peak memory        " << usage.ru_maxrss / 1024 << " MiB\n";
+  } else if (!o.quiet) {
+    std::cout << name << ": " << cc.manifold_dimension << "-manifold in R^" << d << "\n";
+    print_topology(std::cout, cc, topo);
+    if (automatic) std::cout << "  seeds              " << automatic << " found automatically in the box\n";
+    std::cout << "  F evaluations      " << evaluations << " (" << oracle_calls << " oracle calls)\n"
+              << "  time               trace " << trace_s << " s ("
+              << static_cast<long long>(cc.interior[0].size() / std::max(trace_s, 1e-9)) << " simplices/s), cell complex "
+              << complex_s << " s, topology " << topo_s << " s";
+    if (write) std::cout << ", write " << write_s << " s";
+    std::cout << "\n  peak memory        " << peak_memory_bytes() / (1 << 20) << " MiB\n";
+    if (write) {
+      std::cout << "  output             " << output << " (" << format_name(format) << ", " << written.points << " points, "
+                << written.cells << " cells";
+      if (written.skipped) std::cout << "; " << written.skipped << " open cells at the cut not written";
+      std::cout << ")\n";
+    }
     if (!message.empty()) std::cout << "  note: " << message << "\n";
   }
 }
@@ -163,22 +299,41 @@ void run(TraceCliOptions o) {
 
 void register_trace(CLI::App& app, int& status) {
   auto o = std::make_shared<TraceCliOptions>();
-  CLI::App* cmd = app.add_subcommand("trace", "mesh a manifold: trace it through the ambient triangulation");
-  cmd->add_option("--preset", o->preset, "built-in manifold (see `coxmesh presets`)")->capture_default_str();
-  cmd->add_option("--m", o->params.m, "intrinsic dimension (sphere, plane)");
-  cmd->add_option("--dim", o->params.dim, "ambient dimension (sphere, moment-curve, plane)");
-  cmd->add_option("--radius", o->params.radius, "radius parameter of the preset");
-  cmd->add_option("--minor-radius", o->params.minor_radius, "second radius (torus, flat-torus)");
-  cmd->add_option("--center", o->center, "centre c1,...,cd (sphere, plane's domain)");
+  CLI::App* cmd = app.add_subcommand("trace", "mesh a manifold: trace it through the ambient triangulation, report its "
+                                              "topology and write it (default: the torus, to torus.vtu)");
+  auto* preset = cmd->add_option("--preset", o->preset, "built-in manifold (see `coxmesh presets`)")->capture_default_str();
+  cmd->add_option("--function", o->function,
+                  "the manifold as equations \"e1; e2; ...\" = 0 in x1..xd (x,y,z,w when d <= 4), e.g. "
+                  "\"x^2+y^2+z^2-1\"")
+      ->excludes(preset);
+  o->preset_only.push_back(cmd->add_option("--m", o->params.m, "intrinsic dimension (sphere, plane)"));
+  cmd->add_option("--dim", o->params.dim, "ambient dimension d (sphere, moment-curve, plane; --function when the "
+                                          "variables do not show it)");
+  o->preset_only.push_back(cmd->add_option("--radius", o->params.radius, "radius parameter of the preset"));
+  o->preset_only.push_back(cmd->add_option("--minor-radius", o->params.minor_radius, "second radius (torus, flat-torus)"));
+  o->preset_only.push_back(cmd->add_option("--center", o->center, "centre c1,...,cd (sphere, plane's domain)"));
   o->tri.add_to(*cmd);
   cmd->add_option("--seed", o->seeds, "a point near the manifold (projected onto it); repeat for more")->take_all();
-  cmd->add_flag("--auto-seed", o->auto_seed, "also find seeds for every component inside the box");
+  cmd->add_flag("--auto-seed", o->auto_seed,
+                "also find seeds for every component inside the box (always on for --function without --seed)");
   cmd->add_option("--max-simplices", o->max_simplices, "stop when this many simplices are traced")->capture_default_str();
-  cmd->add_option("--box", o->box, "lo1,...,lod,hi1,...,hid: stop at this box (and search seeds in it)");
+  cmd->add_option("--box", o->box,
+                  "lo1,...,lod,hi1,...,hid: stop at this box and search seeds in it (--function: default [-2,2]^d)");
+  cmd->add_option("--domain", o->domains, "keep the part where this expression is < 0; repeat to intersect")->take_all();
   cmd->add_option("--domain-ball", o->domain_ball, "keep the part inside the ball of this radius");
   cmd->add_option("--domain-center", o->domain_center, "centre of --domain-ball (default: origin)");
   cmd->add_option("--cut", o->cut, "n1,...,nd,c: keep the part where <n,x> < c");
-  cmd->add_flag("--json", o->json, "print the summary as JSON");
+  cmd->add_option("-o,--output", o->output,
+                  "write the mesh to FILE (.vtu .off .ply .obj .mesh .cxm); default NAME.vtu (not with --json)");
+  cmd->add_option("--format", o->format, "output format, overriding the extension: vtu, off, noff, ply, obj, mesh, cxm");
+  cmd->add_option("--project", o->project,
+                  "3D formats with d != 3: coordinates i,j,k (1-based, default 1,2,3), pca, or a file of 3 rows of d "
+                  "numbers");
+  cmd->add_option("--threads", o->threads, "worker threads (0: all hardware threads); the result is the same for any number")
+      ->capture_default_str();
+  cmd->add_flag("--no-output", o->no_output, "write no file");
+  cmd->add_flag("--json", o->json, "print the summary as JSON (and write a file only with -o)");
+  cmd->add_flag("-q,--quiet", o->quiet, "print nothing but errors");
   cmd->callback([o, &status] { status = run_guarded([&] { run(*o); }); });
 
   CLI::App* presets = app.add_subcommand("presets", "list the built-in manifolds");

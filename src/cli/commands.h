@@ -8,4 +8,5 @@ void register_locate(CLI::App& app, int& status);
 void register_faces(CLI::App& app, int& status);  // faces and cofaces
 void register_trace(CLI::App& app, int& status);  // trace and presets
 void register_quality(CLI::App& app, int& status);
+void register_io(CLI::App& app, int& status);  // convert and check
 }  // namespace coxmesh::cli

@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   coxmesh::cli::register_faces(app, status);
   coxmesh::cli::register_trace(app, status);
   coxmesh::cli::register_quality(app, status);
+  coxmesh::cli::register_io(app, status);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

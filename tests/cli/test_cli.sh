@@ -4,6 +4,7 @@ set -euo pipefail
 bin=${COXMESH:?set COXMESH to the coxmesh binary}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
+cd "$tmp"  # `coxmesh trace` writes NAME.vtu in the current directory
 fails=0 passes=0
 check() {  # check NAME EXPECTED ACTUAL
   if [[ "$2" == "$3" ]]; then echo "ok   $1"; passes=$((passes + 1)); else echo "FAIL $1: expected [$2] got [$3]"; fails=$((fails + 1)); fi

@@ -52,33 +52,45 @@ bool CofaceEnumerator::next_composition() {
   return false;
 }
 
-// Ordered partitions of block b into cuts_[b]+1 sub-blocks, as surjective label sequences in
-// lexicographic order. The labels' use counts live in count_[b].
+// Ordered partitions of block b into cuts_[b]+1 sub-blocks, as surjective label sequences (over
+// the block's elements in increasing order) in lexicographic order. The labels' use counts live in
+// count_[b].
 void CofaceEnumerator::first_split(int b) {
   const int n = start_[b + 1] - start_[b], c = cuts_[b];
-  std::uint8_t* lab = label_.data() + start_[b];
+  const std::uint8_t* el = elems_.data() + start_[b];
   auto& cnt = count_[b];
-  // One pass (blocks are short: a memset call per block would cost more than the stores).
-  for (int p = 0; p < n; ++p) lab[p] = static_cast<std::uint8_t>(p < n - c ? 0 : p - (n - c) + 1);
+  for (int p = 0; p < n; ++p) label_[el[p]] = static_cast<std::uint8_t>(p < n - c ? 0 : p - (n - c) + 1);
   cnt[0] = static_cast<std::uint8_t>(n - c);
   for (int v = 1; v <= c; ++v) cnt[v] = 1;
+}
+
+// A new cut vector: first splits of every block, and the label offsets of the blocks.
+void CofaceEnumerator::start_composition() {
+  const int k = tau_.k;
+  int offset = 0;
+  for (int b = 0; b <= k; ++b) {
+    first_split(b);
+    for (int p = start_[b]; p < start_[b + 1]; ++p) base_[elems_[p]] = static_cast<std::uint8_t>(offset);
+    offset += cuts_[b] + 1;
+  }
 }
 
 bool CofaceEnumerator::next_split(int b) {
   const int c = cuts_[b];
   if (c == 0) return false;  // one sub-block: a single split (all labels 0, never modified)
   const int n = start_[b + 1] - start_[b];
-  std::uint8_t* lab = label_.data() + start_[b];
+  const std::uint8_t* el = elems_.data() + start_[b];
+  std::uint8_t* lab = label_.data();
   auto& cnt = count_[b];
   if (c == 1) {
     // Two sub-blocks (every cofacet): binary counting, which is lexicographic order; every
     // sequence is surjective except all ones (all zeros cannot follow 0…01). Amortised O(1).
     int ones = cnt[1], pos = n - 1;
-    while (lab[pos] == 1) {  // stops: a surjective sequence has a 0
-      lab[pos--] = 0;
+    while (lab[el[pos]] == 1) {  // stops: a surjective sequence has a 0
+      lab[el[pos--]] = 0;
       --ones;
     }
-    lab[pos] = 1;
+    lab[el[pos]] = 1;
     ++ones;
     cnt[1] = static_cast<std::uint8_t>(ones);
     cnt[0] = static_cast<std::uint8_t>(n - ones);
@@ -86,17 +98,17 @@ bool CofaceEnumerator::next_split(int b) {
   }
   int uncovered = 0;  // the current sequence is surjective
   for (int pos = n - 1; pos >= 0; --pos) {
-    if (--cnt[lab[pos]] == 0) ++uncovered;
-    for (int v = lab[pos] + 1; v <= c; ++v) {
+    if (--cnt[lab[el[pos]]] == 0) ++uncovered;
+    for (int v = lab[el[pos]] + 1; v <= c; ++v) {
       if (cnt[v]++ == 0) --uncovered;
       if (uncovered <= n - 1 - pos) {
-        lab[pos] = static_cast<std::uint8_t>(v);
+        lab[el[pos]] = static_cast<std::uint8_t>(v);
         // Smallest completion: label 0 while there is room, else the smallest unused label.
         for (int q = pos + 1; q < n; ++q) {
           int w = 0;
           if (uncovered >= n - q)
             while (cnt[w] != 0) ++w;
-          lab[q] = static_cast<std::uint8_t>(w);
+          lab[el[q]] = static_cast<std::uint8_t>(w);
           if (cnt[w]++ == 0) --uncovered;
         }
         return true;
@@ -107,28 +119,23 @@ bool CofaceEnumerator::next_split(int b) {
   return false;
 }
 
-// Writes the coface for the current cuts and splits. Block b's sub-blocks get the labels
-// offset_b .. offset_b + c_b (offset_b = Σ_{g<b} (c_g + 1), so offset_k = l − c_k). Rotating d's
-// sub-block (label offset_k + λ_d) to the end maps a label x to x + s with s = c_k − λ_d, except
-// for the sub-blocks after d's in the last block (λ > λ_d), which come first (λ − λ_d − 1) and lower
-// the base vertex by their indicator. Only the last block can contain those, so y changes there
-// only. O(d), branch-light; τ's zero tails are copied with it.
+// Writes the coface for the current cuts and splits. Element i gets the label base_i + λ_i (its
+// block's sub-blocks are base_b .. base_b + c_b; the last block's base is l − c_k). Rotating d's
+// sub-block (label l − c_k + λ_d) to the end adds s = c_k − λ_d to every label, except for the
+// sub-blocks after d's in the last block (λ > λ_d), which come first (λ − λ_d − 1) and lower the
+// base vertex by their indicator. One branch-free pass over the elements; τ's zero tails are
+// copied with it.
 void CofaceEnumerator::build(Simplex& out) const {
   const int k = tau_.k, d = tau_.d;
   out = tau_;
   out.k = static_cast<std::uint8_t>(l_);
-  const int lambda_d = label_[d];  // d is the last element of the last block
-  int offset = cuts_[k] - lambda_d;
-  for (int b = 0; b < k; ++b) {
-    for (int p = start_[b]; p < start_[b + 1]; ++p)
-      out.block[elems_[p]] = static_cast<std::uint8_t>(offset + label_[p]);
-    offset += cuts_[b] + 1;
-  }
-  for (int p = start_[k]; p < d; ++p) {  // the last block without d itself
-    const int e = elems_[p], lambda = label_[p];
-    const bool before = lambda > lambda_d;
-    out.block[e] = static_cast<std::uint8_t>(before ? lambda - lambda_d - 1 : offset + lambda);
-    out.y[e] -= before ? 1 : 0;
+  const int lambda_d = label_[d], shift = cuts_[k] - lambda_d;
+  for (int i = 0; i < d; ++i) {
+    const int lambda = label_[i];
+    const int before = (tau_.block[i] == k) & (lambda > lambda_d);
+    const int rotated = base_[i] + lambda + shift;
+    out.block[i] = static_cast<std::uint8_t>(before ? lambda - lambda_d - 1 : rotated);
+    out.y[i] = tau_.y[i] - before;
   }
   out.block[d] = static_cast<std::uint8_t>(l_);
 }
@@ -139,7 +146,7 @@ bool CofaceEnumerator::next(Simplex& out) {
   if (!started_) {
     started_ = true;
     first_composition();
-    for (int b = 0; b <= k; ++b) first_split(b);
+    start_composition();
     build(out);
     return true;
   }
@@ -153,7 +160,7 @@ bool CofaceEnumerator::next(Simplex& out) {
     }
   }
   if (next_composition()) {
-    for (int b = 0; b <= k; ++b) first_split(b);
+    start_composition();
     build(out);
     return true;
   }
@@ -162,18 +169,8 @@ bool CofaceEnumerator::next(Simplex& out) {
 }
 
 namespace {
-std::uint64_t checked_mul(std::uint64_t a, std::uint64_t b) {
-  std::uint64_t r;
-  if (__builtin_mul_overflow(a, b, &r)) throw InputError("coface count overflows 64 bits");
-  return r;
-}
-std::uint64_t checked_add(std::uint64_t a, std::uint64_t b) {
-  std::uint64_t r;
-  if (__builtin_add_overflow(a, b, &r)) throw InputError("coface count overflows 64 bits");
-  return r;
-}
-// Saturating arithmetic for the table of ordered partition counts: entries that do not fit (e.g.
-// a(21, 21) = 21! for d = 20) are marked, and only throw if a count actually uses them.
+// Saturating arithmetic: table entries and partial sums that do not fit (e.g. a(21, 21) = 21! for
+// d = 20) are marked, and only throw if the requested count actually uses them.
 constexpr std::uint64_t kSaturated = ~std::uint64_t{0};
 std::uint64_t saturating_mul(std::uint64_t a, std::uint64_t b) {
   std::uint64_t r;
@@ -202,12 +199,12 @@ std::uint64_t coface_count(const Simplex& tau, int l) {
     next.fill(0);
     for (int s = 0; s <= l - k; ++s)
       if (ways[s])
-        for (int c = 0; c <= n - 1 && s + c <= l - k; ++c) {
-          if (a[n][c + 1] == kSaturated) throw InputError("coface count overflows 64 bits");
-          next[s + c] = checked_add(next[s + c], checked_mul(ways[s], a[n][c + 1]));
-        }
+        for (int c = 0; c <= n - 1 && s + c <= l - k; ++c)
+          next[s + c] = saturating_add(next[s + c], saturating_mul(ways[s], a[n][c + 1]));
     ways = next;
   }
+  // Saturation propagates, so only a count that really needs a too large term is rejected.
+  if (ways[l - k] == kSaturated) throw InputError("coface count overflows 64 bits");
   return ways[l - k];
 }
 

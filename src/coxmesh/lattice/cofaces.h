@@ -27,6 +27,7 @@ class CofaceEnumerator {
  private:
   bool first_composition();
   bool next_composition();
+  void start_composition();
   void first_split(int b);
   bool next_split(int b);
   void build(Simplex& out) const;
@@ -38,14 +39,18 @@ class CofaceEnumerator {
   // Elements of τ's blocks, grouped by block: elems_[start_[b] .. start_[b+1]).
   std::array<std::uint8_t, kN> elems_{};
   std::array<int, kN + 1> start_{};
-  // cuts_[b] = c_b; label_[p] = sub-block (0..c_b) of element elems_[p]; count_ = uses per label.
+  // cuts_[b] = c_b; label_[i] = sub-block (0..c_b) of element i within its block; base_[i] = first
+  // coface label of i's block (Σ_{g<b} (c_g + 1)); count_[b] = uses per label in block b.
   std::array<int, kN> cuts_{};
   std::array<std::uint8_t, kN> label_{};
-  std::array<std::array<std::uint8_t, kN>, kN> count_{};
+  std::array<std::uint8_t, kN> base_{};
+  std::array<std::array<std::uint8_t, kN>, kN> count_;  // rows 0..k set by first_split; not zeroed (1 KB)
 };
 
 /// Number of l-cofaces of τ (spec §1.5): Σ over cut vectors of Π_i a(n_i, c_i + 1), where
-/// a(n, j) = j!·S(n, j) counts ordered partitions. Exact in 64-bit up to d = 20 (throws beyond).
+/// a(n, j) = j!·S(n, j) counts ordered partitions. Throws InputError only if the count, or a term
+/// it needs, exceeds 64 bits (e.g. the 21! maximal cofaces of a vertex in d = 20); cofacet counts
+/// are exact for every d ≤ kMaxDimension.
 std::uint64_t coface_count(const Simplex& tau, int l);
 
 }  // namespace coxmesh

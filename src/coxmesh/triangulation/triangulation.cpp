@@ -285,6 +285,12 @@ Simplex Triangulation::locate(const double* x) const {
     case 4: return locate_impl<4>(*this, x);
     case 5: return locate_impl<5>(*this, x);
     case 6: return locate_impl<6>(*this, x);
+    case 7: return locate_impl<7>(*this, x);
+    case 8: return locate_impl<8>(*this, x);
+    case 9: return locate_impl<9>(*this, x);
+    case 10: return locate_impl<10>(*this, x);
+    case 11: return locate_impl<11>(*this, x);
+    case 12: return locate_impl<12>(*this, x);
     default: return locate_impl<0>(*this, x);
   }
 }

@@ -1,0 +1,215 @@
+// The native .cxm format: JSON header line, then little-endian arrays; see native_format.h.
+#include "coxmesh/io/native_format.h"
+
+#include <bit>
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+namespace coxmesh {
+
+static_assert(std::endian::native == std::endian::little, "the .cxm reader and writer assume a little-endian host");
+
+namespace {
+
+constexpr const char* kMagic = "coxmesh-cxm";
+constexpr int kVersion = 1;
+
+template <class T>
+void write_array(std::ostream& os, const T* data, std::size_t n) {
+  if (n) os.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(n * sizeof(T)));
+}
+
+nlohmann::json level_json(const CellLevel& level) {
+  return {{"cells", level.size()}, {"facet_entries", level.facet_ids.size()}, {"boundary_facet", !level.boundary_facet.empty()}};
+}
+
+struct Reader {
+  std::istream& in;
+  const std::string& name;
+
+  [[noreturn]] void fail(const std::string& why) const { throw InputError(name + ": " + why); }
+
+  template <class T>
+  std::vector<T> array(std::size_t n, const char* what) {
+    std::vector<T> v(n);
+    if (n) in.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(n * sizeof(T)));
+    if (!in) fail(std::string("truncated file (reading ") + what + ")");
+    return v;
+  }
+};
+
+// Checks that a packed key is the canonical form of a simplex of dimension k in R^d.
+bool valid_key(const std::uint32_t* key, int d, int k) {
+  const Simplex s = unpack(key, d);
+  if (s.k != k) return false;
+  std::uint32_t seen = 0;
+  for (int i = 0; i <= d; ++i) {
+    if (s.block[i] > k) return false;
+    seen |= 1u << s.block[i];
+  }
+  if (seen != (k == 31 ? 0xFFFFFFFFu : (1u << (k + 1)) - 1)) return false;
+  for (int i = d + 1; i < 4 * ((d + 1 + 3) / 4); ++i)
+    if (s.block[i] != 0) return false;
+  for (int i = 0; i < d; ++i)
+    if (s.y[i] > kMaxLatticeCoordinate || s.y[i] < -kMaxLatticeCoordinate) return false;
+  return true;
+}
+
+}  // namespace
+
+void write_native(std::ostream& os, const CellComplex& cc, const NativeInfo& info) {
+  const int d = cc.ambient_dimension, m = cc.manifold_dimension;
+  nlohmann::json h;
+  h["format"] = kMagic;
+  h["version"] = kVersion;
+  h["ambient_dimension"] = d;
+  h["manifold_dimension"] = m;
+  h["key_words"] = packed_words(d);
+  h["interior"] = nlohmann::json::array();
+  h["boundary"] = nlohmann::json::array();
+  for (const CellLevel& l : cc.interior) h["interior"].push_back(level_json(l));
+  for (const CellLevel& l : cc.boundary) h["boundary"].push_back(level_json(l));
+  h["vertices"] = cc.vertices.size() / std::max(d, 1);
+  h["boundary_vertices"] = cc.boundary_vertices.size() / std::max(d, 1);
+  h["info"] = {{"source", info.source},
+               {"complete", info.complete},
+               {"message", info.message},
+               {"matrix", info.matrix},
+               {"offset", info.offset},
+               {"function_evaluations", info.function_evaluations},
+               {"oracle_calls", info.oracle_calls}};
+  std::string line = h.dump();
+  line.append((8 - (line.size() + 1) % 8) % 8, ' ');
+  line += '\n';
+  os.write(line.data(), static_cast<std::streamsize>(line.size()));
+  for (const auto* levels : {&cc.interior, &cc.boundary})
+    for (const CellLevel& l : *levels) {
+      if (l.simplices.words() != packed_words(d)) throw InputError("write_native: a level has keys of the wrong width");
+      if (l.size()) write_array(os, l.simplices.key(0), static_cast<std::size_t>(l.size()) * l.simplices.words());
+      write_array(os, l.facet_offsets.data(), l.facet_offsets.size());
+      write_array(os, l.facet_ids.data(), l.facet_ids.size());
+      write_array(os, l.boundary_facet.data(), l.boundary_facet.size());
+    }
+  write_array(os, cc.vertices.data(), cc.vertices.size());
+  write_array(os, cc.boundary_vertices.data(), cc.boundary_vertices.size());
+}
+
+NativeFile read_native(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("cannot open " + path);
+  return read_native(in, path);
+}
+
+NativeFile read_native(std::istream& in, const std::string& name) {
+  Reader r{in, name};
+  // Header: one line, at most 16 MiB (the matrix of a large d is the largest part).
+  std::string line;
+  for (char c; in.get(c) && c != '\n';) {
+    line += c;
+    if (line.size() > (16u << 20)) r.fail("not a .cxm file (no header line)");
+  }
+  if (!in) r.fail("not a .cxm file (no header line)");
+  const std::streamoff data_start = in.tellg();
+  nlohmann::json h = nlohmann::json::parse(line, nullptr, false);
+  if (h.is_discarded() || !h.is_object() || !h.contains("format") || h["format"] != kMagic)
+    r.fail("not a .cxm file (bad header)");
+  if (!h.contains("version") || h["version"] != kVersion) r.fail("unsupported .cxm version " + h["version"].dump());
+
+  NativeFile out;
+  CellComplex& cc = out.cells;
+  std::uint64_t expected = 0;  // bytes of the binary part, from the header
+  std::vector<std::array<std::uint64_t, 2>> shapes[2];  // per level: cells, facet entries
+  std::vector<bool> has_bf[2];
+  int d = 0, m = 0, words = 0;
+  std::uint64_t n0 = 0, nb0 = 0;
+  try {
+    d = h.at("ambient_dimension").get<int>();
+    m = h.at("manifold_dimension").get<int>();
+    words = h.at("key_words").get<int>();
+    if (d < 1 || d > kMaxDimension || m < 0 || m >= d || words != packed_words(d)) r.fail("inconsistent dimensions in the header");
+    const auto& levels_in = h.at("interior");
+    const auto& levels_bd = h.at("boundary");
+    if (levels_in.size() != static_cast<std::size_t>(m + 1) || levels_bd.size() != static_cast<std::size_t>(m >= 1 ? m : 0))
+      r.fail("the header must list m + 1 interior and m boundary levels");
+    int kind = 0;
+    for (const auto* levels : {&levels_in, &levels_bd}) {
+      for (const auto& l : *levels) {
+        const std::uint64_t n = l.at("cells").get<std::uint64_t>(), f = l.at("facet_entries").get<std::uint64_t>();
+        const bool bf = l.at("boundary_facet").get<bool>();
+        if (n >= PackedKeyIndex::kAbsent || f >= (1ull << 32)) r.fail("too many cells in a level");
+        shapes[kind].push_back({n, f});
+        has_bf[kind].push_back(bf);
+        expected += 4 * (n * words + n + 1 + f + (bf ? n : 0));
+      }
+      ++kind;
+    }
+    n0 = h.at("vertices").get<std::uint64_t>();
+    nb0 = h.at("boundary_vertices").get<std::uint64_t>();
+    if (n0 != shapes[0][0][0] || (m >= 1 && nb0 != shapes[1][0][0]) || (m == 0 && nb0 != 0))
+      r.fail("vertex counts do not match the vertex cells");
+    expected += 8 * (n0 + nb0) * static_cast<std::uint64_t>(d);
+    if (h.contains("info") && h["info"].is_object()) {
+      const auto& i = h["info"];
+      out.info.source = i.value("source", "");
+      out.info.complete = i.value("complete", true);
+      out.info.message = i.value("message", "");
+      out.info.matrix = i.value("matrix", std::vector<double>{});
+      out.info.offset = i.value("offset", std::vector<double>{});
+      out.info.function_evaluations = i.value("function_evaluations", std::uint64_t{0});
+      out.info.oracle_calls = i.value("oracle_calls", std::uint64_t{0});
+    }
+  } catch (const nlohmann::json::exception& e) {
+    r.fail(std::string("bad header: ") + e.what());
+  }
+  in.seekg(0, std::ios::end);
+  const std::uint64_t available = static_cast<std::uint64_t>(in.tellg() - data_start);
+  if (available != expected)
+    r.fail(available < expected ? "truncated file (" + std::to_string(available) + " of " + std::to_string(expected) + " data bytes)"
+                                : "trailing bytes after the arrays");
+  in.seekg(data_start);
+
+  cc.ambient_dimension = d;
+  cc.manifold_dimension = m;
+  const int k = d - m;
+  for (int kind = 0; kind < 2; ++kind) {
+    auto& levels = kind == 0 ? cc.interior : cc.boundary;
+    for (std::size_t j = 0; j < shapes[kind].size(); ++j) {
+      const auto [n, f] = shapes[kind][j];
+      CellLevel level;
+      level.simplices = PackedKeyIndex(words);
+      level.simplices.reserve(n);
+      const auto keys = r.array<std::uint32_t>(n * words, "keys");
+      const int dim = k + static_cast<int>(j) + kind;  // interior: k + j; boundary: k + 1 + j
+      for (std::uint64_t c = 0; c < n; ++c) {
+        const std::uint32_t* key = keys.data() + c * words;
+        if (!valid_key(key, d, dim)) r.fail("cell " + std::to_string(c) + " of a level has an invalid simplex key");
+        if (!level.simplices.insert(key).second) r.fail("a simplex key appears twice in one level");
+      }
+      level.facet_offsets = r.array<std::uint32_t>(n + 1, "facet offsets");
+      level.facet_ids = r.array<std::uint32_t>(f, "facet ids");
+      if (has_bf[kind][j]) level.boundary_facet = r.array<std::uint32_t>(n, "boundary facets");
+      if (level.facet_offsets[0] != 0 || level.facet_offsets[n] != f) r.fail("facet offsets do not match the facet count");
+      for (std::uint64_t c = 0; c < n; ++c)
+        if (level.facet_offsets[c] > level.facet_offsets[c + 1]) r.fail("facet offsets are not increasing");
+      const std::uint64_t below = j == 0 ? 0 : levels[j - 1].size();
+      for (std::uint32_t id : level.facet_ids)
+        if (id >= below) r.fail("a facet id is out of range");
+      if (!level.boundary_facet.empty()) {
+        if (kind != 0 || j == 0) r.fail("boundary facets are only allowed on interior levels j >= 1");
+        const std::uint64_t bd = shapes[1].size() > j - 1 ? shapes[1][j - 1][0] : 0;
+        for (std::uint32_t id : level.boundary_facet)
+          if (id != CellLevel::kNone && id >= bd) r.fail("a boundary facet id is out of range");
+      }
+      levels.push_back(std::move(level));
+    }
+  }
+  cc.vertices = r.array<double>(n0 * d, "vertices");
+  cc.boundary_vertices = r.array<double>(nb0 * d, "boundary vertices");
+  for (const auto* xs : {&cc.vertices, &cc.boundary_vertices})
+    for (double x : *xs)
+      if (!std::isfinite(x)) r.fail("a vertex coordinate is NaN or infinite");
+  return out;
+}
+
+}  // namespace coxmesh

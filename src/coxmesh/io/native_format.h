@@ -1,0 +1,59 @@
+// The native file format `.cxm`: one file holding a whole cell complex in any dimension — every
+// cell of every level with its facets and boundary facet, the ambient simplex of each cell
+// (packed key), the vertex coordinates in R^d, d and m — so that a traced result can be reloaded
+// exactly, re-exported and re-checked. Layout (also in docs/formats.md):
+//
+//   line 1   a JSON object (UTF-8), padded with spaces so that the '\n' ending it is the last
+//            byte before an offset that is a multiple of 8;
+//   then     little-endian binary arrays, back to back, in this order:
+//              for each level, interior j = 0..m then boundary j = 0..m−1:
+//                keys            cells × key_words  uint32   (pack(), simplex.h)
+//                facet_offsets   cells + 1          uint32
+//                facet_ids       facet_entries      uint32
+//                boundary_facet  cells              uint32   (only when the level's flag is set)
+//              vertices           n0 × d             float64
+//              boundary_vertices  nb0 × d            float64
+//
+// Header keys: "format": "coxmesh-cxm", "version": 1, "ambient_dimension", "manifold_dimension",
+// "key_words" (= packed_words(d)), "interior" and "boundary": one object per level
+// {"cells", "facet_entries", "boundary_facet": bool}, "vertices" (n0), "boundary_vertices" (nb0),
+// and "info" (NativeInfo below).
+#pragma once
+
+#include <cstdint>
+#include <istream>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "coxmesh/cell_complex/cell_complex.h"
+
+namespace coxmesh {
+
+/// Context stored next to the cells (header key "info"); every field is optional.
+struct NativeInfo {
+  std::string source;                   ///< how the manifold was given, e.g. "function x^2+y^2+z^2-1"
+  bool complete = true;                 ///< false when a limit stopped the trace
+  std::string message;                  ///< why it stopped (empty when complete)
+  std::vector<double> matrix, offset;   ///< the ambient triangulation x = Λ·y + b: Λ (d × d, row-major) and b
+  std::uint64_t function_evaluations = 0, oracle_calls = 0;
+};
+
+struct NativeFile {
+  CellComplex cells;
+  NativeInfo info;
+};
+
+/// Writes the complex in the .cxm layout above to a binary stream. Little-endian hosts only
+/// (checked at compile time).
+void write_native(std::ostream& os, const CellComplex& cc, const NativeInfo& info = {});
+
+/// Reads a .cxm file and rebuilds the complex exactly: keys are re-inserted in file order, so
+/// every cell keeps its id, and every array equals the written one. Validates everything (header,
+/// sizes against the file size, simplex keys, facet ids in range, finite coordinates).
+///   Throws InputError naming the file for anything wrong.
+NativeFile read_native(const std::string& path);
+/// The same from a stream; `name` is used in error messages.
+NativeFile read_native(std::istream& in, const std::string& name);
+
+}  // namespace coxmesh

@@ -1,0 +1,209 @@
+// Geometry of a cell complex for the writers: vertex numbering, polygon cycles, polyhedron faces.
+#include "coxmesh/io/polygons.h"
+
+#include <algorithm>
+#include <unordered_map>
+
+namespace coxmesh {
+
+namespace {
+
+std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
+  return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
+}
+
+// The (j−1)-cells bounding cell c of dimension j of one kind, as ids in the global numbering of
+// dimension j − 1 (interior cells first, then boundary cells offset by `interior_below`).
+void facets_of(const CellLevel& level, CellKind kind, std::uint32_t c, std::uint32_t interior_below,
+               std::vector<std::uint32_t>& out) {
+  out.clear();
+  const std::uint32_t shift = kind == CellKind::boundary ? interior_below : 0;
+  for (std::uint32_t f : level.facets(c)) out.push_back(shift + f);
+  if (kind == CellKind::interior && !level.boundary_facet.empty() && level.boundary_facet[c] != CellLevel::kNone)
+    out.push_back(interior_below + level.boundary_facet[c]);
+}
+
+}  // namespace
+
+const CellLevel* cell_level(const CellComplex& cc, CellKind kind, int j) {
+  const auto& levels = kind == CellKind::interior ? cc.interior : cc.boundary;
+  return j >= 0 && j < static_cast<int>(levels.size()) ? &levels[j] : nullptr;
+}
+
+std::uint32_t cell_count(const CellComplex& cc, CellKind kind, int j) {
+  const CellLevel* level = cell_level(cc, kind, j);
+  return level ? level->size() : 0;
+}
+
+std::uint32_t vertex_count(const CellComplex& cc) {
+  return cell_count(cc, CellKind::interior, 0) + cell_count(cc, CellKind::boundary, 0);
+}
+
+std::vector<double> vertex_coordinates(const CellComplex& cc) {
+  std::vector<double> xs = cc.vertices;
+  xs.insert(xs.end(), cc.boundary_vertices.begin(), cc.boundary_vertices.end());
+  return xs;
+}
+
+Ragged edge_ends(const CellComplex& cc, CellKind kind) {
+  Ragged ends;
+  const CellLevel* level = cell_level(cc, kind, 1);
+  if (!level) return ends;
+  const std::uint32_t n0 = cell_count(cc, CellKind::interior, 0);
+  std::vector<std::uint32_t> list;
+  for (std::uint32_t c = 0; c < level->size(); ++c) {
+    facets_of(*level, kind, c, n0, list);
+    ends.push(list);
+  }
+  return ends;
+}
+
+Ragged polygon_cycles(const CellComplex& cc) {
+  Ragged cycles;
+  const Ragged ends[2] = {edge_ends(cc, CellKind::interior), edge_ends(cc, CellKind::boundary)};
+  const std::uint32_t n1 = ends[0].size();
+  std::vector<std::uint32_t> edges, cycle;
+  std::vector<bool> used;
+  for (CellKind kind : {CellKind::interior, CellKind::boundary}) {
+    const CellLevel* level = cell_level(cc, kind, 2);
+    if (!level) continue;
+    for (std::uint32_t c = 0; c < level->size(); ++c) {
+      facets_of(*level, kind, c, n1, edges);
+      cycle.clear();
+      bool closed = edges.size() >= 3;
+      auto ends_of = [&](std::uint32_t e) { return e < n1 ? ends[0][e] : ends[1][e - n1]; };
+      for (std::uint32_t e : edges) closed = closed && ends_of(e).size() == 2;
+      if (closed) {
+        // Walk: from the second end of the first edge, repeatedly take the unused edge at the
+        // current vertex. A convex polygon has few edges, so the quadratic search is cheap.
+        used.assign(edges.size(), false);
+        used[0] = true;
+        const auto first = ends_of(edges[0]);
+        cycle.push_back(first[0]);
+        std::uint32_t current = first[1];
+        while (current != cycle.front() && closed) {
+          cycle.push_back(current);
+          closed = false;
+          for (std::size_t i = 0; i < edges.size() && !closed; ++i) {
+            if (used[i]) continue;
+            const auto e = ends_of(edges[i]);
+            if (e[0] == current || e[1] == current) {
+              used[i] = true;
+              current = e[0] == current ? e[1] : e[0];
+              closed = true;
+            }
+          }
+        }
+        closed = closed && cycle.size() == edges.size() && std::all_of(used.begin(), used.end(), [](bool u) { return u; });
+      }
+      if (!closed) cycle.clear();
+      cycles.push(cycle);
+    }
+  }
+  return cycles;
+}
+
+Ragged oriented_polygon_cycles(const CellComplex& cc, const double* points3) {
+  Ragged polygons = polygon_cycles(cc);
+  const std::uint32_t n2 = cell_count(cc, CellKind::interior, 2);
+  if (cc.manifold_dimension == 2) orient_polygons(polygons, 0, n2, points3);
+  if (cc.manifold_dimension == 3) orient_polygons(polygons, n2, polygons.size(), points3);
+  return polygons;
+}
+
+Ragged polyhedron_faces(const CellComplex& cc, CellKind kind, const Ragged& polygons) {
+  Ragged faces;
+  const CellLevel* level = cell_level(cc, kind, 3);
+  if (!level) return faces;
+  const std::uint32_t n2 = cell_count(cc, CellKind::interior, 2);
+  std::vector<std::uint32_t> list;
+  std::vector<std::uint64_t> edges;
+  for (std::uint32_t c = 0; c < level->size(); ++c) {
+    facets_of(*level, kind, c, n2, list);
+    // Closed: every face is a polygon and every edge lies in exactly two faces.
+    bool closed = list.size() >= 4;
+    edges.clear();
+    for (std::uint32_t f : list) {
+      const auto cycle = polygons[f];
+      closed = closed && !cycle.empty();
+      for (std::size_t i = 0; i < cycle.size(); ++i) edges.push_back(edge_key(cycle[i], cycle[(i + 1) % cycle.size()]));
+    }
+    std::sort(edges.begin(), edges.end());
+    for (std::size_t i = 0; closed && i < edges.size(); i += 2)
+      closed = i + 1 < edges.size() && edges[i] == edges[i + 1] && (i + 2 >= edges.size() || edges[i + 2] != edges[i]);
+    if (!closed) list.clear();
+    faces.push(list);
+  }
+  return faces;
+}
+
+void orient_polygons(Ragged& polygons, std::uint32_t first, std::uint32_t last, const double* points3) {
+  const std::uint32_t n = std::min(last, polygons.size());
+  // Edge → the (at most two) polygons using it and the direction they traverse it.
+  struct Uses {
+    std::uint32_t poly[2];
+    bool forward[2];
+    std::uint8_t count = 0;
+  };
+  std::unordered_map<std::uint64_t, Uses> uses;
+  uses.reserve(polygons.items.size());
+  for (std::uint32_t p = first; p < n; ++p) {
+    const auto cycle = polygons[p];
+    for (std::size_t i = 0; i < cycle.size(); ++i) {
+      const std::uint32_t a = cycle[i], b = cycle[(i + 1) % cycle.size()];
+      Uses& u = uses[edge_key(a, b)];
+      if (u.count < 2) {
+        u.poly[u.count] = p;
+        u.forward[u.count] = a < b;
+      }
+      u.count = static_cast<std::uint8_t>(std::min(u.count + 1, 3));
+    }
+  }
+  auto reverse = [&](std::uint32_t p) {
+    std::reverse(polygons.items.begin() + polygons.offsets[p] + 1, polygons.items.begin() + polygons.offsets[p + 1]);
+  };
+  std::vector<std::uint8_t> state(n, 0);  // 0 unvisited, 1 kept, 2 reversed
+  std::vector<std::uint32_t> queue, component;
+  for (std::uint32_t start = first; start < n; ++start) {
+    if (state[start] || polygons[start].empty()) continue;
+    state[start] = 1;
+    queue.assign(1, start);
+    component.clear();
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+      const std::uint32_t p = queue[head];
+      component.push_back(p);
+      const auto cycle = polygons[p];
+      for (std::size_t i = 0; i < cycle.size(); ++i) {
+        const Uses& u = uses[edge_key(cycle[i], cycle[(i + 1) % cycle.size()])];
+        if (u.count != 2) continue;
+        const int self = u.poly[0] == p ? 0 : 1, other = 1 - self;
+        const std::uint32_t q = u.poly[other];
+        if (state[q]) continue;
+        // Directions as stored; a reversed polygon has its direction flipped. Opposite is wanted.
+        const bool p_forward = u.forward[self] != (state[p] == 2);
+        state[q] = p_forward == u.forward[other] ? 2 : 1;
+        queue.push_back(q);
+      }
+    }
+    bool flip_all = false;
+    if (points3) {  // signed volume of the cone from the origin over the component's fan triangles
+      double volume = 0;
+      for (std::uint32_t p : component) {
+        std::vector<std::uint32_t> cycle(polygons[p].begin(), polygons[p].end());
+        if (state[p] == 2) std::reverse(cycle.begin() + 1, cycle.end());
+        const double* a = points3 + 3 * static_cast<std::size_t>(cycle[0]);
+        for (std::size_t i = 1; i + 1 < cycle.size(); ++i) {
+          const double* b = points3 + 3 * static_cast<std::size_t>(cycle[i]);
+          const double* c = points3 + 3 * static_cast<std::size_t>(cycle[i + 1]);
+          volume += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+                    a[2] * (b[0] * c[1] - b[1] * c[0]);
+        }
+      }
+      flip_all = volume < 0;
+    }
+    for (std::uint32_t p : component)
+      if ((state[p] == 2) != flip_all) reverse(p);
+  }
+}
+
+}  // namespace coxmesh

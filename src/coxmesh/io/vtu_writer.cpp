@@ -1,0 +1,198 @@
+// VTK XML UnstructuredGrid writer (raw appended data); see mesh_formats.h and docs/formats.md.
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "coxmesh/io/mesh_formats.h"
+#include "coxmesh/io/polygons.h"
+
+namespace coxmesh {
+
+static_assert(std::endian::native == std::endian::little, "the VTU writer declares LittleEndian data");
+
+namespace {
+
+constexpr std::uint8_t kVertex = 1, kLine = 3, kPolygon = 7, kPolyhedron = 42;
+
+// The cells of the grid, built up cell by cell.
+struct Grid {
+  std::vector<std::int64_t> connectivity, offsets, faces, faceoffsets;
+  std::vector<std::uint8_t> types, dimension, is_boundary;
+  bool has_polyhedra = false;
+
+  void add(std::uint8_t type, int dim, bool boundary, std::span<const std::uint32_t> points) {
+    connectivity.insert(connectivity.end(), points.begin(), points.end());
+    offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
+    types.push_back(type);
+    dimension.push_back(static_cast<std::uint8_t>(dim));
+    is_boundary.push_back(boundary ? 1 : 0);
+    faceoffsets.push_back(-1);
+  }
+};
+
+std::array<double, 3> vec(const double* p3, std::uint32_t v) { return {p3[3 * v], p3[3 * v + 1], p3[3 * v + 2]}; }
+
+// Adds a 3-cell as a VTK polyhedron with faces turned outwards (Newell normal against the
+// direction from the cell's centroid to the face's centroid).
+void add_polyhedron(Grid& g, bool boundary, std::span<const std::uint32_t> face_ids, const Ragged& polygons,
+                    const double* p3) {
+  std::vector<std::uint32_t> points;
+  for (std::uint32_t f : face_ids) points.insert(points.end(), polygons[f].begin(), polygons[f].end());
+  std::sort(points.begin(), points.end());
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  std::array<double, 3> centre{0, 0, 0};
+  for (std::uint32_t v : points)
+    for (int i = 0; i < 3; ++i) centre[i] += p3[3 * v + i] / static_cast<double>(points.size());
+  g.add(kPolyhedron, 3, boundary, points);
+  g.has_polyhedra = true;
+  g.faces.push_back(static_cast<std::int64_t>(face_ids.size()));
+  std::vector<std::uint32_t> cycle;
+  for (std::uint32_t f : face_ids) {
+    cycle.assign(polygons[f].begin(), polygons[f].end());
+    std::array<double, 3> normal{0, 0, 0}, mid{0, 0, 0};
+    for (std::size_t i = 0; i < cycle.size(); ++i) {
+      const auto a = vec(p3, cycle[i]), b = vec(p3, cycle[(i + 1) % cycle.size()]);
+      normal[0] += (a[1] - b[1]) * (a[2] + b[2]);
+      normal[1] += (a[2] - b[2]) * (a[0] + b[0]);
+      normal[2] += (a[0] - b[0]) * (a[1] + b[1]);
+      for (int j = 0; j < 3; ++j) mid[j] += a[j] / static_cast<double>(cycle.size());
+    }
+    double dot = 0;
+    for (int j = 0; j < 3; ++j) dot += normal[j] * (mid[j] - centre[j]);
+    if (dot < 0) std::reverse(cycle.begin() + 1, cycle.end());
+    g.faces.push_back(static_cast<std::int64_t>(cycle.size()));
+    g.faces.insert(g.faces.end(), cycle.begin(), cycle.end());
+  }
+  g.faceoffsets.back() = static_cast<std::int64_t>(g.faces.size());
+}
+
+// One appended-data block: UInt64 byte count, then the bytes.
+struct Block {
+  std::string xml;  // the DataArray element, without its offset attribute
+  const void* data;
+  std::uint64_t bytes;
+};
+
+template <class T>
+Block block(std::string xml, const std::vector<T>& v) {
+  return {std::move(xml), v.data(), v.size() * sizeof(T)};
+}
+
+}  // namespace
+
+WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projection& projection) {
+  const int d = cc.ambient_dimension, m = cc.manifold_dimension;
+  const std::vector<double> xs = vertex_coordinates(cc);
+  const std::vector<double> p3 = project_points(projection, xs);
+  const std::uint32_t n0 = cell_count(cc, CellKind::interior, 0), nv = vertex_count(cc);
+  WrittenCounts counts;
+  counts.points = nv;
+
+  Grid g;
+  const int p = std::min(m, 3);
+  auto add_level = [&](CellKind kind, int dim) {
+    const bool boundary = kind == CellKind::boundary;
+    if (dim == 0) {
+      for (std::uint32_t c = 0; c < cell_count(cc, kind, 0); ++c) {
+        const std::uint32_t v = boundary ? n0 + c : c;
+        g.add(kVertex, 0, boundary, std::span(&v, 1));
+      }
+    } else if (dim == 1) {
+      const Ragged ends = edge_ends(cc, kind);
+      for (std::uint32_t c = 0; c < ends.size(); ++c)
+        if (ends[c].size() == 2) {
+          g.add(kLine, 1, boundary, ends[c]);
+        } else {
+          ++counts.skipped;
+        }
+    }
+  };
+  if (p <= 1) {
+    add_level(CellKind::interior, p);
+    if (m == 1) add_level(CellKind::boundary, 0);
+  } else {
+    const Ragged polygons = oriented_polygon_cycles(cc, p3.data());
+    const std::uint32_t n2 = cell_count(cc, CellKind::interior, 2);
+    if (p == 2) {
+      for (std::uint32_t c = 0; c < polygons.size(); ++c)
+        if (!polygons[c].empty()) {
+          g.add(kPolygon, 2, c >= n2, polygons[c]);
+        } else {
+          ++counts.skipped;
+        }
+      add_level(CellKind::boundary, 1);
+    } else {
+      for (CellKind kind : {CellKind::interior, CellKind::boundary}) {
+        const Ragged faces = polyhedron_faces(cc, kind, polygons);
+        for (std::uint32_t c = 0; c < faces.size(); ++c)
+          if (!faces[c].empty()) {
+            add_polyhedron(g, kind == CellKind::boundary, faces[c], polygons, p3.data());
+          } else {
+            ++counts.skipped;
+          }
+      }
+      for (std::uint32_t c = n2; m == 3 && c < polygons.size(); ++c) {
+        if (!polygons[c].empty()) {
+          g.add(kPolygon, 2, true, polygons[c]);
+        } else {
+          ++counts.skipped;
+        }
+      }
+    }
+  }
+  counts.cells = g.types.size();
+
+  std::vector<std::uint8_t> on_boundary(nv, 0);
+  std::fill(on_boundary.begin() + n0, on_boundary.end(), 1);
+  std::vector<Block> point_data, cell_data, points, cells;
+  point_data.push_back(block(R"(<DataArray type="UInt8" Name="on_boundary" format="appended")", on_boundary));
+  if (projection.changes_points)
+    point_data.push_back(block(R"(<DataArray type="Float64" Name="coordinates" NumberOfComponents=")" +
+                                   std::to_string(d) + R"(" format="appended")",
+                               xs));
+  cell_data.push_back(block(R"(<DataArray type="UInt8" Name="dimension" format="appended")", g.dimension));
+  cell_data.push_back(block(R"(<DataArray type="UInt8" Name="is_boundary" format="appended")", g.is_boundary));
+  points.push_back(block(R"(<DataArray type="Float64" Name="Points" NumberOfComponents="3" format="appended")", p3));
+  cells.push_back(block(R"(<DataArray type="Int64" Name="connectivity" format="appended")", g.connectivity));
+  cells.push_back(block(R"(<DataArray type="Int64" Name="offsets" format="appended")", g.offsets));
+  cells.push_back(block(R"(<DataArray type="UInt8" Name="types" format="appended")", g.types));
+  if (g.has_polyhedra) {
+    cells.push_back(block(R"(<DataArray type="Int64" Name="faces" format="appended")", g.faces));
+    cells.push_back(block(R"(<DataArray type="Int64" Name="faceoffsets" format="appended")", g.faceoffsets));
+  }
+
+  std::string xml =
+      "<?xml version=\"1.0\"?>\n"
+      "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+      "  <UnstructuredGrid>\n"
+      "    <Piece NumberOfPoints=\"" + std::to_string(nv) + "\" NumberOfCells=\"" + std::to_string(counts.cells) + "\">\n";
+  std::uint64_t offset = 0;
+  std::vector<const Block*> order;
+  auto section = [&](const char* name, const std::vector<Block>& blocks) {
+    xml += std::string("      <") + name + ">\n";
+    for (const Block& b : blocks) {
+      xml += "        " + b.xml + " offset=\"" + std::to_string(offset) + "\"/>\n";
+      offset += 8 + b.bytes;
+      order.push_back(&b);
+    }
+    xml += std::string("      </") + name + ">\n";
+  };
+  section("PointData", point_data);
+  section("CellData", cell_data);
+  section("Points", points);
+  section("Cells", cells);
+  xml += "    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n_";
+  os.write(xml.data(), static_cast<std::streamsize>(xml.size()));
+  for (const Block* b : order) {
+    os.write(reinterpret_cast<const char*>(&b->bytes), 8);
+    if (b->bytes) os.write(static_cast<const char*>(b->data), static_cast<std::streamsize>(b->bytes));
+  }
+  const std::string tail = "\n  </AppendedData>\n</VTKFile>\n";
+  os.write(tail.data(), static_cast<std::streamsize>(tail.size()));
+  return counts;
+}
+
+}  // namespace coxmesh

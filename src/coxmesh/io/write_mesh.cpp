@@ -1,0 +1,81 @@
+// Choice of format and atomic writing of output files; see write_mesh.h.
+#include "coxmesh/io/write_mesh.h"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "coxmesh/io/atomic_file.h"
+#include "coxmesh/io/polygons.h"
+
+namespace coxmesh {
+
+namespace {
+
+struct FormatName {
+  const char* name;
+  MeshFormat format;
+};
+constexpr FormatName kNames[] = {{"vtu", MeshFormat::vtu}, {"off", MeshFormat::off},     {"noff", MeshFormat::noff},
+                                 {"ply", MeshFormat::ply}, {"obj", MeshFormat::obj},     {"mesh", MeshFormat::medit},
+                                 {"medit", MeshFormat::medit}, {"cxm", MeshFormat::cxm}};
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+}  // namespace
+
+MeshFormat parse_format(const std::string& name) {
+  for (const FormatName& f : kNames)
+    if (lower(name) == f.name) return f.format;
+  throw InputError("unknown format '" + name + "' (known: vtu, off, noff, ply, obj, mesh, cxm)");
+}
+
+MeshFormat format_of_path(const std::string& path) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext.size() > 1)
+    for (const FormatName& f : kNames)
+      if (lower(ext.substr(1)) == f.name) return f.format;
+  throw InputError("cannot tell the format of '" + path +
+                   "' from its extension: use .vtu, .off, .ply, .obj, .mesh or .cxm, or give --format");
+}
+
+const char* format_name(MeshFormat format) {
+  for (const FormatName& f : kNames)
+    if (f.format == format) return f.name;
+  return "?";
+}
+
+WrittenCounts write_mesh(const std::string& path, MeshFormat format, const CellComplex& cc, const WriteOptions& options) {
+  const int d = cc.ambient_dimension, m = cc.manifold_dimension;
+  if (format == MeshFormat::cxm) {
+    write_file_atomically(path, [&](std::ostream& os) { write_native(os, cc, options.native); });
+    std::size_t cells = 0;
+    for (const auto* levels : {&cc.interior, &cc.boundary})
+      for (const CellLevel& l : *levels) cells += l.size();
+    return {vertex_count(cc), cells, 0};
+  }
+  if ((format == MeshFormat::off || format == MeshFormat::noff || format == MeshFormat::ply) && m < 2)
+    throw InputError(std::string(format_name(format)) + " holds polygons, but this is a " + std::to_string(m) +
+                     "-manifold: use .vtu, .obj, .mesh or .cxm");
+  if (format == MeshFormat::obj && m < 1) throw InputError("obj holds lines and polygons, but this is a 0-manifold");
+  // The projection is resolved first, so that a spec that does not fit d fails before the file exists.
+  const bool n_dimensional = format == MeshFormat::noff || (format == MeshFormat::off && d != 3 && options.projection.empty());
+  const Projection projection = make_projection(options.projection, d, n_dimensional ? std::span<const double>{} : vertex_coordinates(cc));
+  WrittenCounts counts;
+  write_file_atomically(path, [&](std::ostream& os) {
+    switch (format) {
+      case MeshFormat::vtu: counts = write_vtu(os, cc, projection); break;
+      case MeshFormat::off:
+      case MeshFormat::noff: counts = write_off(os, cc, projection, n_dimensional); break;
+      case MeshFormat::ply: counts = write_ply(os, cc, projection); break;
+      case MeshFormat::obj: counts = write_obj(os, cc, projection); break;
+      case MeshFormat::medit: counts = write_medit(os, cc, projection); break;
+      case MeshFormat::cxm: break;
+    }
+  });
+  return counts;
+}
+
+}  // namespace coxmesh

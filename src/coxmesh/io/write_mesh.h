@@ -1,0 +1,40 @@
+// Output files: the format chosen by name or by extension, validated before any file is touched,
+// and written atomically (atomic_file.h) by the writer of that format (mesh_formats.h,
+// native_format.h).
+#pragma once
+
+#include <string>
+
+#include "coxmesh/cell_complex/cell_complex.h"
+#include "coxmesh/io/mesh_formats.h"
+#include "coxmesh/io/native_format.h"
+
+namespace coxmesh {
+
+enum class MeshFormat { vtu, off, noff, ply, obj, medit, cxm };
+
+/// The format of a name: vtu, off, noff, ply, obj, mesh (or medit), cxm. Throws InputError listing
+/// the known names.
+MeshFormat parse_format(const std::string& name);
+
+/// The format of a file name's extension (.vtu .off .ply .obj .mesh .cxm, any case). Throws
+/// InputError for other extensions.
+MeshFormat format_of_path(const std::string& path);
+
+/// The canonical name of a format ("vtu", "off", …).
+const char* format_name(MeshFormat format);
+
+struct WriteOptions {
+  std::string projection;  ///< --project: "", "i,j,k", "pca" or a matrix file (projection.h)
+  NativeInfo native;       ///< context stored in .cxm files
+};
+
+/// Writes the complex to `path` in `format`, atomically. `.off` writes OFF when the points are in
+/// R³ (d = 3, or a --project given) and nOFF otherwise. The projection and the format's needs (m ≥ 2
+/// for OFF and PLY) are checked before the file is created.
+///   Throws InputError (bad projection, format unable to hold the complex, unwritable path); on
+///   error an existing file at `path` is left untouched.
+WrittenCounts write_mesh(const std::string& path, MeshFormat format, const CellComplex& cc,
+                         const WriteOptions& options = {});
+
+}  // namespace coxmesh

@@ -1,0 +1,585 @@
+// The io layer: exact round trip of the native .cxm format, polygon cycles and polyhedron faces,
+// surface orientation, every writer read back and counted (OFF, nOFF, PLY, OBJ, medit), atomic
+// writes that leave the previous file untouched, projections, and expressions (values and errors).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "coxmesh/cell_complex/cell_complex.h"
+#include "coxmesh/cell_complex/topology.h"
+#include "coxmesh/io/atomic_file.h"
+#include "coxmesh/io/polygons.h"
+#include "coxmesh/io/write_mesh.h"
+#include "coxmesh/oracle/expression_function.h"
+#include "coxmesh/oracle/implicit_oracle.h"
+#include "coxmesh/tracing/trace_manifold.h"
+
+using namespace coxmesh;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Case {
+  std::string name;
+  FunctionPtr f, domain;
+  double edge;
+};
+
+CellComplex trace(const Case& c) {
+  const Triangulation t = Triangulation::coxeter(c.f->ambient_dimension()).with_longest_edge(c.edge);
+  ImplicitOracle oracle(t, c.f, c.domain);
+  TraceResult r = trace_manifold(t, oracle, {c.f->seed()});
+  EXPECT_EQ(r.status, TraceStatus::complete) << c.name;
+  return build_cell_complex(std::move(r));
+}
+
+// Curves, surfaces with and without boundary, 3-manifolds with and without boundary, in d = 2..5.
+std::vector<Case> catalogue() {
+  return {
+      {"circle in R^2", sphere(1, 2, 1.0), nullptr, 0.2},
+      {"arc in R^3", sphere(1, 3, 1.0), ball_domain({1, 0, 0}, 0.8), 0.2},
+      {"sphere in R^3", sphere(2, 3, 1.0), nullptr, 0.3},
+      {"torus in R^3", torus(1.0, 0.4), nullptr, 0.15},
+      {"cap in R^3", sphere(2, 3, 1.0), ball_domain({1, 0, 0}, 0.9), 0.25},
+      {"flat torus in R^4", product(sphere(1, 2, 1.0), sphere(1, 2, 1.0)), nullptr, 0.5},
+      {"S^3 in R^4", sphere(3, 4, 1.0), nullptr, 0.6},
+      {"cap of S^3 in R^4", sphere(3, 4, 1.0), ball_domain({1, 0, 0, 0}, 1.0), 0.6},
+      {"S^3 in R^5 with boundary", sphere(3, 5, 1.0), half_space_domain({-1, 0, 0, 0, 0}, 0.3), 0.8},
+      {"S^4 in R^5", sphere(4, 5, 1.0), nullptr, 0.9},
+      {"cap of S^4 in R^5", sphere(4, 5, 1.0), ball_domain({1, 0, 0, 0, 0}, 1.0), 0.9},
+  };
+}
+
+fs::path temp_dir() {
+  fs::path dir = fs::temp_directory_path() / ("coxmesh_test_io_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void expect_levels_equal(const CellLevel& a, const CellLevel& b, const std::string& what) {
+  ASSERT_EQ(a.size(), b.size()) << what;
+  ASSERT_EQ(a.simplices.words(), b.simplices.words()) << what;
+  if (a.size()) {
+    EXPECT_EQ(0, std::memcmp(a.simplices.key(0), b.simplices.key(0), 4ull * a.size() * a.simplices.words())) << what;
+  }
+  for (std::uint32_t c = 0; c < b.size(); ++c) ASSERT_EQ(b.simplices.find(b.simplices.key(c)), c) << what;
+  EXPECT_EQ(a.facet_offsets, b.facet_offsets) << what;
+  EXPECT_EQ(a.facet_ids, b.facet_ids) << what;
+  EXPECT_EQ(a.boundary_facet, b.boundary_facet) << what;
+}
+
+void expect_complexes_equal(const CellComplex& a, const CellComplex& b, const std::string& name) {
+  EXPECT_EQ(a.ambient_dimension, b.ambient_dimension);
+  EXPECT_EQ(a.manifold_dimension, b.manifold_dimension);
+  ASSERT_EQ(a.interior.size(), b.interior.size());
+  ASSERT_EQ(a.boundary.size(), b.boundary.size());
+  for (std::size_t j = 0; j < a.interior.size(); ++j) expect_levels_equal(a.interior[j], b.interior[j], name + " interior " + std::to_string(j));
+  for (std::size_t j = 0; j < a.boundary.size(); ++j) expect_levels_equal(a.boundary[j], b.boundary[j], name + " boundary " + std::to_string(j));
+  EXPECT_EQ(a.vertices, b.vertices);  // bit-exact doubles
+  EXPECT_EQ(a.boundary_vertices, b.boundary_vertices);
+}
+
+// Tokens of a text file, for the parsers below.
+std::vector<std::string> tokens(const std::string& text) {
+  std::istringstream in(text);
+  std::vector<std::string> out;
+  for (std::string t; in >> t;) out.push_back(t);
+  return out;
+}
+
+std::size_t complete_count(const Ragged& r) {
+  std::size_t n = 0;
+  for (std::uint32_t i = 0; i < r.size(); ++i) n += !r[i].empty();
+  return n;
+}
+
+}  // namespace
+
+// ---- Native format ------------------------------------------------------------------------------
+
+TEST(NativeFormat, RoundTripIsExact) {
+  for (const Case& c : catalogue()) {
+    const CellComplex cc = trace(c);
+    NativeInfo info;
+    info.source = "test " + c.name;
+    info.complete = false;
+    info.message = "a message";
+    info.matrix = {1.5, 0.1, -2.25};
+    info.offset = {0.3};
+    info.function_evaluations = 123456789012ull;
+    info.oracle_calls = 42;
+    std::stringstream buffer;
+    write_native(buffer, cc, info);
+    const std::string bytes = buffer.str();
+    const std::size_t header_end = bytes.find('\n') + 1;
+    EXPECT_EQ(header_end % 8, 0u) << c.name << ": the arrays start 8-byte aligned";
+    const NativeFile back = read_native(buffer, c.name);
+    expect_complexes_equal(cc, back.cells, c.name);
+    EXPECT_EQ(back.info.source, info.source);
+    EXPECT_EQ(back.info.complete, false);
+    EXPECT_EQ(back.info.message, info.message);
+    EXPECT_EQ(back.info.matrix, info.matrix);
+    EXPECT_EQ(back.info.offset, info.offset);
+    EXPECT_EQ(back.info.function_evaluations, info.function_evaluations);
+    EXPECT_EQ(back.info.oracle_calls, 42u);
+    // The same topology, and a second write gives the same bytes.
+    const TopologyReport t1 = analyze_topology(cc), t2 = analyze_topology(back.cells);
+    EXPECT_EQ(t1.cells, t2.cells);
+    EXPECT_EQ(t1.betti, t2.betti);
+    EXPECT_EQ(t1.euler_characteristic, t2.euler_characteristic);
+    std::stringstream again;
+    write_native(again, back.cells, back.info);
+    EXPECT_EQ(again.str(), bytes) << c.name;
+  }
+}
+
+TEST(NativeFormat, FileRoundTripThroughWriteMesh) {
+  const fs::path dir = temp_dir();
+  const CellComplex cc = trace(catalogue()[4]);
+  write_mesh((dir / "cap.cxm").string(), format_of_path("cap.CXM"), cc);
+  expect_complexes_equal(cc, read_native((dir / "cap.cxm").string()).cells, "cap");
+  fs::remove_all(dir);
+}
+
+TEST(NativeFormat, RejectsDamagedFiles) {
+  const CellComplex cc = trace(catalogue()[2]);
+  std::stringstream buffer;
+  write_native(buffer, cc);
+  const std::string bytes = buffer.str();
+  auto read = [](const std::string& s) {
+    std::stringstream in(s);
+    return read_native(in, "damaged.cxm");
+  };
+  EXPECT_THROW(read(bytes.substr(0, bytes.size() - 1)), InputError);                  // truncated
+  EXPECT_THROW(read(bytes + "x"), InputError);                                        // trailing bytes
+  EXPECT_THROW(read("not a cxm file\n" + bytes.substr(bytes.find('\n') + 1)), InputError);  // bad header
+  EXPECT_THROW(read(""), InputError);
+  // A facet id out of range: the first facet id of level 1 (after the level-0 keys and offsets).
+  std::string bad = bytes;
+  const std::size_t header_end = bytes.find('\n') + 1;
+  const std::size_t words = packed_words(3), n0 = cc.interior[0].size(), n1 = cc.interior[1].size();
+  const std::size_t first_facet = header_end + 4 * (n0 * words + n0 + 1) + 4 * (n1 * words + n1 + 1);
+  const std::uint32_t huge = 0xFFFFFFF0u;
+  std::memcpy(bad.data() + first_facet, &huge, 4);
+  try {
+    read(bad);
+    FAIL() << "no error for a facet id out of range";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("damaged.cxm"), std::string::npos) << e.what();
+  }
+  // A key that is not a simplex (a block label beyond k).
+  bad = bytes;
+  bad[header_end + 4 * 3] = 7;
+  EXPECT_THROW(read(bad), InputError);
+  EXPECT_THROW(read_native("/nonexistent/file.cxm"), InputError);
+}
+
+// ---- Polygons and polyhedra ---------------------------------------------------------------------
+
+TEST(Polygons, CyclesFollowEdgeCells) {
+  for (const Case& c : catalogue()) {
+    const CellComplex cc = trace(c);
+    if (cc.manifold_dimension < 2) continue;
+    std::set<std::pair<std::uint32_t, std::uint32_t>> edges;
+    for (CellKind kind : {CellKind::interior, CellKind::boundary}) {
+      const Ragged ends = edge_ends(cc, kind);
+      for (std::uint32_t e = 0; e < ends.size(); ++e) {
+        ASSERT_EQ(ends[e].size(), 2u) << c.name << ": a complete trace has edges with two ends";
+        edges.insert(std::minmax(ends[e][0], ends[e][1]));
+      }
+    }
+    const Ragged polygons = polygon_cycles(cc);
+    ASSERT_EQ(polygons.size(), cell_count(cc, CellKind::interior, 2) + cell_count(cc, CellKind::boundary, 2));
+    const std::uint32_t n2 = cell_count(cc, CellKind::interior, 2), nv = vertex_count(cc);
+    for (std::uint32_t p = 0; p < polygons.size(); ++p) {
+      const auto cycle = polygons[p];
+      ASSERT_GE(cycle.size(), 3u) << c.name << " polygon " << p;
+      // As many vertices as edge cells, all distinct, consecutive ones joined by an edge cell.
+      const CellLevel& level = p < n2 ? cc.interior[2] : cc.boundary[2];
+      const std::uint32_t id = p < n2 ? p : p - n2;
+      std::size_t edge_cells = level.facets(id).size();
+      if (p < n2 && !level.boundary_facet.empty() && level.boundary_facet[id] != CellLevel::kNone) ++edge_cells;
+      EXPECT_EQ(cycle.size(), edge_cells) << c.name;
+      EXPECT_EQ(std::set<std::uint32_t>(cycle.begin(), cycle.end()).size(), cycle.size()) << c.name;
+      for (std::size_t i = 0; i < cycle.size(); ++i) {
+        ASSERT_LT(cycle[i], nv);
+        EXPECT_TRUE(edges.count(std::minmax(cycle[i], cycle[(i + 1) % cycle.size()]))) << c.name << " polygon " << p;
+      }
+    }
+  }
+}
+
+TEST(Polygons, PolyhedraAreClosed) {
+  for (const Case& c : catalogue()) {
+    const CellComplex cc = trace(c);
+    if (cc.manifold_dimension < 3) continue;
+    const Ragged polygons = polygon_cycles(cc);
+    for (CellKind kind : {CellKind::interior, CellKind::boundary}) {
+      const Ragged faces = polyhedron_faces(cc, kind, polygons);
+      ASSERT_EQ(faces.size(), cell_count(cc, kind, 3));
+      for (std::uint32_t p = 0; p < faces.size(); ++p) {
+        ASSERT_FALSE(faces[p].empty()) << c.name << ": 3-cell " << p << " is not closed";
+        // Euler's formula for a convex polyhedron: V − E + F = 2.
+        std::set<std::uint32_t> vertices;
+        std::size_t edge_uses = 0;
+        for (std::uint32_t f : faces[p]) {
+          vertices.insert(polygons[f].begin(), polygons[f].end());
+          edge_uses += polygons[f].size();
+        }
+        EXPECT_EQ(static_cast<long>(vertices.size()) - static_cast<long>(edge_uses / 2) + static_cast<long>(faces[p].size()), 2)
+            << c.name;
+      }
+    }
+  }
+}
+
+TEST(Polygons, SurfacesAreConsistentlyOrientedOutwards) {
+  for (int i : {2, 3, 4}) {
+    const Case c = catalogue()[i];
+    const CellComplex cc = trace(c);
+    const std::vector<double> xs = vertex_coordinates(cc);
+    const Ragged polygons = oriented_polygon_cycles(cc, xs.data());
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
+    double volume = 0;
+    for (std::uint32_t p = 0; p < polygons.size(); ++p) {
+      const auto cy = polygons[p];
+      for (std::size_t k = 0; k < cy.size(); ++k) ++directed[{cy[k], cy[(k + 1) % cy.size()]}];
+      const double* a = &xs[3 * cy[0]];
+      for (std::size_t k = 1; k + 1 < cy.size(); ++k) {
+        const double *b = &xs[3 * cy[k]], *d = &xs[3 * cy[k + 1]];
+        volume += a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) + a[2] * (b[0] * d[1] - b[1] * d[0]);
+      }
+    }
+    for (const auto& [e, n] : directed) {
+      EXPECT_EQ(n, 1) << c.name << ": an edge is traversed twice in the same direction";
+      const auto reverse = directed.find({e.second, e.first});
+      if (c.domain == nullptr) {
+        EXPECT_TRUE(reverse != directed.end() && reverse->second == 1) << c.name;
+      }
+    }
+    if (c.domain == nullptr) {
+      EXPECT_GT(volume, 0) << c.name << ": outward normals enclose a positive volume";
+    }
+  }
+}
+
+// ---- Writers read back --------------------------------------------------------------------------
+
+TEST(Writers, OffPlyObjMeditReadBack) {
+  const fs::path dir = temp_dir();
+  for (const Case& c : catalogue()) {
+    const CellComplex cc = trace(c);
+    const int m = cc.manifold_dimension, d = cc.ambient_dimension;
+    const std::size_t nv = vertex_count(cc);
+    const Ragged polygons = polygon_cycles(cc);
+    const std::size_t faces = complete_count(polygons);
+    WriteOptions options;
+    if (d > 3) options.projection = "pca";
+
+    if (m >= 2) {
+      // OFF (3D) or nOFF (R^d): header, counts, vertex ids in range.
+      write_mesh((dir / "a.off").string(), MeshFormat::off, cc);
+      const auto off = tokens(read_text(dir / "a.off"));
+      std::size_t i = 0;
+      if (d == 3) {
+        ASSERT_EQ(off[i++], "OFF") << c.name;
+      } else {
+        ASSERT_EQ(off[i++], "nOFF") << c.name;
+        ASSERT_EQ(std::stoi(off[i++]), d);
+      }
+      ASSERT_EQ(std::stoul(off[i++]), nv) << c.name;
+      ASSERT_EQ(std::stoul(off[i++]), faces) << c.name;
+      ++i;
+      i += nv * static_cast<std::size_t>(d);
+      for (std::size_t f = 0; f < faces; ++f) {
+        const std::size_t n = std::stoul(off[i++]);
+        ASSERT_GE(n, 3u);
+        for (std::size_t k = 0; k < n; ++k) ASSERT_LT(std::stoul(off[i++]), nv);
+      }
+      EXPECT_EQ(i, off.size()) << c.name;
+
+      // PLY, binary: header counts, then exactly the bytes they announce.
+      write_mesh((dir / "a.ply").string(), MeshFormat::ply, cc, options);
+      const std::string ply = read_text(dir / "a.ply");
+      const std::size_t body = ply.find("end_header\n") + 11;
+      const auto head = tokens(ply.substr(0, body));
+      ASSERT_EQ(head[0], "ply");
+      EXPECT_EQ(head[2], "binary_little_endian");
+      std::size_t nv_ply = 0, nf_ply = 0;
+      for (std::size_t t = 0; t + 2 < head.size(); ++t)
+        if (head[t] == "element") (head[t + 1] == "vertex" ? nv_ply : nf_ply) = std::stoul(head[t + 2]);
+      EXPECT_EQ(nv_ply, nv);
+      EXPECT_EQ(nf_ply, faces);
+      std::size_t pos = body + 24 * nv;
+      for (std::size_t f = 0; f < nf_ply; ++f) {
+        const unsigned n = static_cast<unsigned char>(ply[pos]);
+        ASSERT_GE(n, 3u);
+        for (unsigned k = 0; k < n; ++k) {
+          std::int32_t v;
+          std::memcpy(&v, ply.data() + pos + 1 + 4 * k, 4);
+          ASSERT_LT(static_cast<std::size_t>(v), nv);
+        }
+        pos += 1 + 4 * n;
+      }
+      EXPECT_EQ(pos, ply.size()) << c.name;
+    } else {
+      EXPECT_THROW(write_mesh((dir / "a.off").string(), MeshFormat::off, cc), InputError);
+      EXPECT_THROW(write_mesh((dir / "a.ply").string(), MeshFormat::ply, cc), InputError);
+    }
+
+    // OBJ: v lines, then f (surfaces) or l (curves) lines with 1-based ids.
+    write_mesh((dir / "a.obj").string(), MeshFormat::obj, cc, options);
+    std::istringstream obj(read_text(dir / "a.obj"));
+    std::size_t v_lines = 0, elements = 0;
+    for (std::string line; std::getline(obj, line);) {
+      if (line.rfind("v ", 0) == 0) ++v_lines;
+      if (line.rfind(m == 1 ? "l " : "f ", 0) == 0) {
+        ++elements;
+        for (std::size_t k = 1; k < tokens(line).size(); ++k) {
+          const std::size_t id = std::stoul(tokens(line)[k]);
+          ASSERT_TRUE(id >= 1 && id <= nv);
+        }
+      }
+    }
+    EXPECT_EQ(v_lines, nv);
+    EXPECT_EQ(elements, m == 1 ? cell_count(cc, CellKind::interior, 1) : faces) << c.name;
+
+    // medit: section counts match the fans and cones built from the cells.
+    write_mesh((dir / "a.mesh").string(), MeshFormat::medit, cc, options);
+    const auto mesh = tokens(read_text(dir / "a.mesh"));
+    std::map<std::string, std::size_t> sections;
+    for (std::size_t t = 0; t + 1 < mesh.size(); ++t)
+      if (mesh[t] == "Vertices" || mesh[t] == "Edges" || mesh[t] == "Triangles" || mesh[t] == "Tetrahedra") {
+        sections[mesh[t]] = std::stoul(mesh[t + 1]);
+        const std::size_t arity = mesh[t] == "Vertices" ? 0 : mesh[t] == "Edges" ? 2 : mesh[t] == "Triangles" ? 3 : 4;
+        for (std::size_t e = 0; arity && e < sections[mesh[t]]; ++e)
+          for (std::size_t k = 0; k < arity; ++k) {
+            const std::size_t id = std::stoul(mesh[t + 2 + e * (arity + 1) + k]);
+            ASSERT_TRUE(id >= 1 && id <= nv) << c.name;
+          }
+      }
+    EXPECT_EQ(mesh.back(), "End");
+    EXPECT_EQ(sections["Vertices"], nv);
+    std::size_t triangles = 0, tets = 0;
+    const std::uint32_t n2 = cell_count(cc, CellKind::interior, 2);
+    if (m == 2 || m == 3)
+      for (std::uint32_t p = m == 2 ? 0 : n2; p < polygons.size(); ++p) triangles += polygons[p].size() - 2;
+    if (m >= 3)
+      for (CellKind kind : {CellKind::interior, CellKind::boundary}) {
+        const Ragged cells3 = polyhedron_faces(cc, kind, polygons);
+        for (std::uint32_t p = 0; p < cells3.size(); ++p) {
+          const std::uint32_t apex = polygons[cells3[p][0]][0];
+          for (std::uint32_t f : cells3[p]) {
+            const auto cy = polygons[f];
+            if (std::find(cy.begin(), cy.end(), apex) == cy.end()) tets += cy.size() - 2;
+          }
+        }
+      }
+    EXPECT_EQ(sections["Triangles"], triangles) << c.name;
+    EXPECT_EQ(sections["Tetrahedra"], tets) << c.name;
+    EXPECT_EQ(sections["Edges"], m == 1 ? cell_count(cc, CellKind::interior, 1) : m == 2 ? cell_count(cc, CellKind::boundary, 1) : 0u)
+        << c.name;
+  }
+  fs::remove_all(dir);
+}
+
+TEST(Writers, MeditTetrahedraFillTheBallPositively) {
+  // The 3-ball {x4 = 0, |x| < 1} in R^4, projected on its first three coordinates: the
+  // tetrahedra are positively oriented and their volumes add up to the polyhedral ball's.
+  Eigen::MatrixXd n = Eigen::MatrixXd::Zero(4, 1);
+  n(3, 0) = 1;
+  const Case c{"3-ball", affine_plane(n, Eigen::VectorXd::Zero(4)), ball_domain({0, 0, 0, 0}, 1.0), 0.3};
+  const Triangulation t = Triangulation::coxeter(4).with_longest_edge(c.edge).with_offset(Eigen::Vector4d(0.01, 0.02, 0.03, 0.0123));
+  ImplicitOracle oracle(t, c.f, c.domain);
+  const CellComplex cc = build_cell_complex(trace_manifold(t, oracle, {{0.1, 0.1, 0.1, 0.0}}));
+  std::stringstream out;
+  WriteOptions options;
+  const Projection p = make_projection("1,2,3", 4, {});
+  write_medit(out, cc, p);
+  const auto mesh = tokens(out.str());
+  const auto at = std::find(mesh.begin(), mesh.end(), "Vertices") - mesh.begin();
+  const std::size_t nv = std::stoul(mesh[at + 1]);
+  const auto tt = std::find(mesh.begin(), mesh.end(), "Tetrahedra") - mesh.begin();
+  const std::size_t nt = std::stoul(mesh[tt + 1]);
+  double total = 0, smallest = 1;
+  for (std::size_t e = 0; e < nt; ++e) {
+    double v[4][3];
+    for (int k = 0; k < 4; ++k) {
+      const std::size_t id = std::stoul(mesh[tt + 2 + e * 5 + k]) - 1;
+      for (int i = 0; i < 3; ++i) v[k][i] = std::stod(mesh[at + 2 + id * 4 + i]);
+    }
+    double a[3], b[3], w[3];
+    for (int i = 0; i < 3; ++i) a[i] = v[1][i] - v[0][i], b[i] = v[2][i] - v[0][i], w[i] = v[3][i] - v[0][i];
+    const double vol = (a[0] * (b[1] * w[2] - b[2] * w[1]) - a[1] * (b[0] * w[2] - b[2] * w[0]) + a[2] * (b[0] * w[1] - b[1] * w[0])) / 6;
+    total += vol;
+    smallest = std::min(smallest, vol);
+  }
+  EXPECT_GT(nv, 0u);
+  EXPECT_GE(smallest, 0.0);
+  EXPECT_NEAR(total, 4.0 / 3.0 * M_PI, 0.3);  // the polyhedral ball is a little smaller
+}
+
+// ---- Formats, projections, atomic files ---------------------------------------------------------
+
+TEST(WriteMesh, FormatsByNameAndExtension) {
+  EXPECT_EQ(format_of_path("a/b.VTU"), MeshFormat::vtu);
+  EXPECT_EQ(format_of_path("x.mesh"), MeshFormat::medit);
+  EXPECT_EQ(parse_format("medit"), MeshFormat::medit);
+  EXPECT_EQ(parse_format("noff"), MeshFormat::noff);
+  EXPECT_THROW(format_of_path("x.stl"), InputError);
+  EXPECT_THROW(format_of_path("noextension"), InputError);
+  EXPECT_THROW(parse_format("stl"), InputError);
+}
+
+TEST(Projection, SpecsAndErrors) {
+  const std::vector<double> pts = {1, 2, 3, 4, 5, 6, 7, 8};  // two points of R^4
+  EXPECT_EQ(project_points(make_projection("", 4, pts), pts), (std::vector<double>{1, 2, 3, 5, 6, 7}));
+  EXPECT_EQ(project_points(make_projection("4,1", 4, pts), pts), (std::vector<double>{4, 1, 0, 8, 5, 0}));
+  EXPECT_FALSE(make_projection("", 3, {}).changes_points);
+  EXPECT_TRUE(make_projection("", 2, {}).changes_points);
+  EXPECT_THROW(make_projection("1,2,5", 4, pts), InputError);
+  EXPECT_THROW(make_projection("0,1,2", 4, pts), InputError);
+  EXPECT_THROW(make_projection("1,2,3,4", 4, pts), InputError);
+  EXPECT_THROW(make_projection("no-such-file.txt", 4, pts), InputError);
+  // PCA: points on a line along (1,1,0,0) project onto the first axis only.
+  const std::vector<double> line = {0, 0, 5, 5, 1, 1, 5, 5, 2, 2, 5, 5};
+  const std::vector<double> p = project_points(make_projection("pca", 4, line), line);
+  EXPECT_NEAR(p[0], -std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(p[6], std::sqrt(2.0), 1e-12);
+  for (int v = 0; v < 3; ++v) EXPECT_NEAR(std::abs(p[3 * v + 1]) + std::abs(p[3 * v + 2]), 0, 1e-12);
+  // Matrix files: 3 rows of d numbers.
+  const fs::path dir = temp_dir();
+  std::ofstream(dir / "p.txt") << "# projection\n1 0 0 0\n0 1 0 0\n0 0 0 1\n";
+  EXPECT_EQ(project_points(make_projection((dir / "p.txt").string(), 4, pts), pts), (std::vector<double>{1, 2, 4, 5, 6, 8}));
+  EXPECT_THROW(make_projection((dir / "p.txt").string(), 3, pts), InputError);
+  std::ofstream(dir / "q.txt") << "1 0 0 0\n0 1 0 0\n";
+  EXPECT_THROW(make_projection((dir / "q.txt").string(), 4, pts), InputError);
+  fs::remove_all(dir);
+}
+
+TEST(AtomicFile, ErrorsLeaveThePreviousFileUntouched) {
+  const fs::path dir = temp_dir();
+  const fs::path target = dir / "out.txt";
+  std::ofstream(target) << "previous content";
+  EXPECT_THROW(write_file_atomically(target.string(),
+                                     [](std::ostream& os) {
+                                       os << std::string(1 << 20, 'x');  // more than the buffer: really on disk
+                                       throw InputError("writer failed");
+                                     }),
+               InputError);
+  EXPECT_EQ(read_text(target), "previous content");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1) << "the temporary file is removed";
+  // A missing directory: an error naming the path.
+  try {
+    write_file_atomically((dir / "missing" / "out.txt").string(), [](std::ostream& os) { os << "x"; });
+    FAIL() << "no error for a missing directory";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("missing/out.txt"), std::string::npos) << e.what();
+  }
+  // A directory in the way: rename fails, nothing is left behind.
+  fs::create_directory(dir / "sub");
+  EXPECT_THROW(write_file_atomically((dir / "sub").string(), [](std::ostream& os) { os << "x"; }), InputError);
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 2);
+  // The early check agrees.
+  EXPECT_NO_THROW(check_writable(target.string()));
+  EXPECT_NO_THROW(check_writable((dir / "new.txt").string()));
+  EXPECT_THROW(check_writable((dir / "missing" / "out.txt").string()), InputError);
+  EXPECT_THROW(check_writable((dir / "sub").string()), InputError);
+  EXPECT_THROW(check_writable((target / "x").string()), InputError);
+  // Success replaces the content.
+  write_file_atomically(target.string(), [](std::ostream& os) { os << "new"; });
+  EXPECT_EQ(read_text(target), "new");
+  // write_mesh validates the projection before touching the file.
+  const CellComplex cc = trace(catalogue()[5]);  // d = 4
+  WriteOptions bad;
+  bad.projection = "1,2,7";
+  EXPECT_THROW(write_mesh(target.string(), MeshFormat::vtu, cc, bad), InputError);
+  EXPECT_EQ(read_text(target), "new");
+  fs::remove_all(dir);
+}
+
+// ---- Expressions --------------------------------------------------------------------------------
+
+TEST(Expression, ValuesDimensionsAndAliases) {
+  const FunctionPtr f = expression_function("x^2+y^2+z^2-1");
+  EXPECT_EQ(f->ambient_dimension(), 3);
+  EXPECT_EQ(f->codimension(), 1);
+  double x[4] = {1, 2, 3, 4}, v[2];
+  f->evaluate(x, v);
+  EXPECT_EQ(v[0], 13.0);
+  const FunctionPtr g = expression_function("x1^2+x2^2-1; x3 - x4", 4);
+  EXPECT_EQ(g->codimension(), 2);
+  g->evaluate(x, v);
+  EXPECT_EQ(v[0], 4.0);
+  EXPECT_EQ(v[1], -1.0);
+  const FunctionPtr h = expression_function("x^2 + w = 2*pi");  // lhs = rhs, w = x4
+  EXPECT_EQ(h->ambient_dimension(), 4);
+  h->evaluate(x, v);
+  EXPECT_DOUBLE_EQ(v[0], 5.0 - 2 * M_PI);
+  EXPECT_EQ(expression_function("z")->ambient_dimension(), 3);
+  EXPECT_EQ(expression_function("x1", 5)->ambient_dimension(), 5);
+  EXPECT_EQ(expression_domain("x^2+y^2-4", 3)->codimension(), 1);
+  EXPECT_EQ(expression_function("x < 0 ? -x : x - 1; y", 3)->codimension(), 2);
+}
+
+TEST(Expression, MatchesTheCompiledSphereExactly) {
+  const FunctionPtr e = expression_function("x^2+y^2+z^2-1"), s = sphere(2, 3, 1.0);
+  double x[3] = {0.3, -0.7, 0.11}, a, b;
+  for (int i = 0; i < 100; ++i) {
+    x[i % 3] += 0.0137 * i;
+    e->evaluate(x, &a);
+    s->evaluate(x, &b);
+    EXPECT_EQ(a, b);
+  }
+  // And the traced complexes agree.
+  const Case ce{"expr", e, nullptr, 0.3}, cs{"sphere", s, nullptr, 0.3};
+  const Triangulation t = Triangulation::coxeter(3).with_longest_edge(0.3);
+  ImplicitOracle o1(t, e), o2(t, s);
+  const CellComplex c1 = build_cell_complex(trace_manifold(t, o1, {{1, 0, 0}}));
+  const CellComplex c2 = build_cell_complex(trace_manifold(t, o2, {{1, 0, 0}}));
+  expect_complexes_equal(c1, c2, "expression vs sphere");
+}
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(Expression, Errors) {
+  auto has = [](const std::string& msg, const std::string& part) {
+    return msg.find(part) != std::string::npos ? ::testing::AssertionSuccess()
+                                               : ::testing::AssertionFailure() << "'" << msg << "' lacks '" << part << "'";
+  };
+  std::string e = error_of([] { expression_function("x^2+*y"); });
+  EXPECT_TRUE(has(e, "position 5"));
+  EXPECT_TRUE(has(e, "x^2+*y"));
+  e = error_of([] { expression_function("x^2+y^2-1; (z"); });
+  EXPECT_TRUE(has(e, "position 14"));  // the end of the second equation, in the whole text
+  EXPECT_TRUE(has(error_of([] { expression_function("x^2+foo"); }), "unknown variable 'foo' at position 5"));
+  EXPECT_TRUE(has(error_of([] { expression_function("x0+y"); }), "unknown variable 'x0'"));
+  EXPECT_TRUE(has(error_of([] { expression_function("x3+x1", 2); }), "beyond the dimension d = 2"));
+  EXPECT_TRUE(has(error_of([] { expression_function("x+x5"); }), "only for d <= 4"));
+  EXPECT_TRUE(has(error_of([] { expression_function("x^2+y^2-1; x-y"); }), "fewer equations than the dimension"));
+  EXPECT_TRUE(has(error_of([] { expression_function("x"); }), "give --dim"));
+  EXPECT_TRUE(has(error_of([] { expression_function("x, y"); }), "separate equations with ';'"));
+  EXPECT_TRUE(has(error_of([] { expression_function("x+y;;z"); }), "empty equation"));
+  EXPECT_TRUE(has(error_of([] { expression_function("x=y=z"); }), "second '='"));
+  EXPECT_TRUE(has(error_of([] { expression_function("x", 40); }), "not supported"));
+  EXPECT_TRUE(has(error_of([] { expression_domain("x; y", 3); }), "2 expressions"));
+  EXPECT_TRUE(has(error_of([] { expression_domain("x4", 3); }), "beyond the dimension d = 3"));
+}
