@@ -1,21 +1,8 @@
 #!/usr/bin/env bash
 # End-to-end tests of the coxmesh binary ($COXMESH): outputs, JSON keys, errors and exit codes.
 set -euo pipefail
-bin=${COXMESH:?set COXMESH to the coxmesh binary}
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+source "$(dirname "$0")/lib.sh"
 cd "$tmp"  # `coxmesh trace` writes NAME.vtu in the current directory
-fails=0 passes=0
-check() {  # check NAME EXPECTED ACTUAL
-  if [[ "$2" == "$3" ]]; then echo "ok   $1"; passes=$((passes + 1)); else echo "FAIL $1: expected [$2] got [$3]"; fails=$((fails + 1)); fi
-}
-fails_with() {  # fails_with NAME PATTERN CMD...: non-zero exit and one error line matching PATTERN
-  local name=$1 pattern=$2; shift 2
-  local err status=0
-  err=$("$@" 2>&1 >/dev/null) || status=$?
-  if [[ $status -ne 0 && "$err" == *"$pattern"* && $(printf '%s\n' "$err" | wc -l) -eq 1 ]]; then echo "ok   $name"; passes=$((passes + 1))
-  else echo "FAIL $name: status $status, stderr [$err]"; fails=$((fails + 1)); fi
-}
 
 # locate: spec §1.10 examples.
 check "locate FK" "(3,-2,0) [{0},{2},{1},{3}]" "$("$bin" locate --triangulation freudenthal --point 3.5,-1.8,0.3 | cut -d' ' -f1-2)"
@@ -72,5 +59,4 @@ fails_with "trace unknown preset" "unknown preset" "$bin" trace --preset nope
 fails_with "trace seed outside domain" "outside the domain" "$bin" trace --preset sphere --domain-ball 0.3 --domain-center -1,0,0
 fails_with "trace bad box" "2d = 6" "$bin" trace --preset sphere --box 0,0,1
 
-echo "$passes passed, $fails failed"
-[[ $fails -eq 0 ]]
+finish

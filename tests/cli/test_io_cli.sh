@@ -4,23 +4,9 @@
 # reader from Debian python3-vtk9 under /usr/bin/python3), convert and check, progress output, and
 # errors (one line, non-zero exit, existing output files untouched).
 set -euo pipefail
-bin=${COXMESH:?set COXMESH to the coxmesh binary}
-bin=$(cd "$(dirname "$bin")" && pwd)/$(basename "$bin")
+source "$(dirname "$0")/lib.sh"
 py=/usr/bin/python3
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
 cd "$tmp"
-fails=0 passes=0
-check() {  # check NAME EXPECTED ACTUAL
-  if [[ "$2" == "$3" ]]; then echo "ok   $1"; passes=$((passes + 1)); else echo "FAIL $1: expected [$2] got [$3]"; fails=$((fails + 1)); fi
-}
-fails_with() {  # fails_with NAME PATTERN CMD...: non-zero exit and one error line matching PATTERN
-  local name=$1 pattern=$2; shift 2
-  local err status=0
-  err=$("$@" 2>&1 >/dev/null) || status=$?
-  if [[ $status -ne 0 && "$err" == *"$pattern"* && $(printf '%s\n' "$err" | wc -l) -eq 1 ]]; then echo "ok   $name"; passes=$((passes + 1))
-  else echo "FAIL $name: status $status, stderr [$err]"; fails=$((fails + 1)); fi
-}
 
 # VTK's Python module must be there: a missing module is a failure, not a skip.
 if ! "$py" -c 'import vtk' 2>/dev/null; then
@@ -247,5 +233,4 @@ fails_with "convert to an unwritable path" "cannot write" "$bin" convert torus.c
 check "existing output untouched" "previous" "$(cat keep.vtu)"
 check "no temporary files left" "0" "$(ls -A | grep -c '\.tmp-' || true)"
 
-echo "$passes passed, $fails failed"
-[[ $fails -eq 0 ]]
+finish

@@ -2,20 +2,7 @@
 # End-to-end tests of `coxmesh quality` ($COXMESH): JSON keys and values, CSV, Markdown, errors and
 # exit codes, and the SVG plot (spec §5; thesis Ch. 2).
 set -euo pipefail
-bin=${COXMESH:?set COXMESH to the coxmesh binary}
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-fails=0 passes=0
-check() {  # check NAME EXPECTED ACTUAL
-  if [[ "$2" == "$3" ]]; then echo "ok   $1"; passes=$((passes + 1)); else echo "FAIL $1: expected [$2] got [$3]"; fails=$((fails + 1)); fi
-}
-fails_with() {  # fails_with NAME PATTERN CMD...: non-zero exit and one error line matching PATTERN
-  local name=$1 pattern=$2; shift 2
-  local err status=0
-  err=$("$@" 2>&1 >/dev/null) || status=$?
-  if [[ $status -ne 0 && "$err" == *"$pattern"* && $(printf '%s\n' "$err" | wc -l) -eq 1 ]]; then echo "ok   $name"; passes=$((passes + 1))
-  else echo "FAIL $name: status $status, stderr [$err]"; fails=$((fails + 1)); fi
-}
+source "$(dirname "$0")/lib.sh"
 
 # JSON: one row per (type, d), every documented key, values of spec §5.3.
 json=$("$bin" quality --type A,C --dim 2..4 --json)
@@ -73,5 +60,4 @@ if command -v python3 >/dev/null; then
   check "svg well-formed" "ok" "$(python3 -c 'import sys, xml.dom.minidom as m; [m.parse(f) for f in sys.argv[1:]]; print("ok")' "$tmp/plot.svg" "$tmp/fat.svg")"
 fi
 
-echo "$passes passed, $fails failed"
-[[ $fails -eq 0 ]]
+finish

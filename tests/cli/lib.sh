@@ -1,0 +1,21 @@
+# Shared by the CLI test scripts, sourced after `set -euo pipefail`: $bin (the absolute path of
+# $COXMESH), $tmp (a directory removed on exit), the checks, and `finish` (the closing count line).
+bin=${COXMESH:?set COXMESH to the coxmesh binary}
+bin=$(cd "$(dirname "$bin")" && pwd)/$(basename "$bin")
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fails=0 passes=0
+check() {  # check NAME EXPECTED ACTUAL
+  if [[ "$2" == "$3" ]]; then echo "ok   $1"; passes=$((passes + 1)); else echo "FAIL $1: expected [$2] got [$3]"; fails=$((fails + 1)); fi
+}
+fails_with() {  # fails_with NAME PATTERN CMD...: non-zero exit and one error line matching PATTERN
+  local name=$1 pattern=$2; shift 2
+  local err status=0
+  err=$("$@" 2>&1 >/dev/null) || status=$?
+  if [[ $status -ne 0 && "$err" == *"$pattern"* && $(printf '%s\n' "$err" | wc -l) -eq 1 ]]; then echo "ok   $name"; passes=$((passes + 1))
+  else echo "FAIL $name: status $status, stderr [$err]"; fails=$((fails + 1)); fi
+}
+finish() {
+  echo "$passes passed, $fails failed"
+  [[ $fails -eq 0 ]]
+}
