@@ -1,4 +1,5 @@
 #include "common.h"
+#include "coxmesh/util/parse_number.h"
 
 #include <cmath>
 #include <iostream>
@@ -53,16 +54,10 @@ std::vector<double> parse_point(const std::string& text, const std::string& what
     std::size_t j = i;
     while (j < text.size() && text[j] != ',' && !std::isspace(static_cast<unsigned char>(text[j]))) ++j;
     const std::string tok = text.substr(i, j - i);
-    std::size_t used = 0;
-    double v = 0;
-    try {
-      v = std::stod(tok, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != tok.size()) throw InputError(what + ": '" + tok + "' is not a number");
-    if (!std::isfinite(v)) throw InputError(what + ": NaN or infinite coordinate '" + tok + "'");
-    out.push_back(v);
+    const std::optional<double> v = parse_double(tok);
+    if (!v) throw InputError(what + ": '" + tok + "' is not a number");
+    if (!std::isfinite(*v)) throw InputError(what + ": NaN or infinite coordinate '" + tok + "'");
+    out.push_back(*v);
     i = j;
   }
   if (out.empty()) throw InputError(what + ": no coordinates in '" + text + "'");

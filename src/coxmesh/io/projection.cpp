@@ -1,5 +1,6 @@
 // Projection of R^d points to R³ for the 3D formats; see projection.h.
 #include "coxmesh/io/projection.h"
+#include "coxmesh/util/parse_number.h"
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
@@ -24,16 +25,10 @@ std::vector<double> read_projection_file(const std::string& path, int d) {
     std::string token;
     int cols = 0;
     while (ls >> token) {
-      std::size_t used = 0;
-      double v = 0;
-      try {
-        v = std::stod(token, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != token.size() || !std::isfinite(v))
+      const std::optional<double> v = parse_double(token);
+      if (!v || !std::isfinite(*v))
         throw InputError("--project " + path + ": '" + token + "' is not a finite number");
-      m.push_back(v);
+      m.push_back(*v);
       ++cols;
     }
     if (cols == 0) continue;

@@ -1,5 +1,6 @@
 // Thesis §3.1–3.3; spec §1.3 (vertex coordinates), §1.7 (point location), §1.8 (Ã_d).
 #include "coxmesh/triangulation/triangulation.h"
+#include "coxmesh/util/parse_number.h"
 
 #include <Eigen/LU>
 #include <Eigen/QR>
@@ -343,18 +344,12 @@ Eigen::MatrixXd read_matrix_file(const std::string& path) {
     std::vector<double> row;
     std::string tok;
     while (ls >> tok) {
-      std::size_t used = 0;
-      double v = 0;
-      try {
-        v = std::stod(tok, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != tok.size())
+      const std::optional<double> v = parse_double(tok);
+      if (!v)
         throw InputError("matrix file '" + path + "', line " + std::to_string(lineno) + ": '" + tok + "' is not a number");
-      if (!std::isfinite(v))
+      if (!std::isfinite(*v))
         throw InputError("matrix file '" + path + "', line " + std::to_string(lineno) + ": NaN or infinite entry");
-      row.push_back(v);
+      row.push_back(*v);
     }
     if (row.empty()) continue;
     if (!rows.empty() && row.size() != rows.front().size())
