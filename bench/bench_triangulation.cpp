@@ -22,40 +22,19 @@
 #include "coxmesh/lattice/cofaces.h"
 #include "coxmesh/lattice/simplex.h"
 #include "coxmesh/triangulation/triangulation.h"
+#include "../tests/gudhi/gudhi_interop.h"
 
 namespace {
 
 namespace gct = Gudhi::coxeter_triangulation;
 using GSimplex = gct::Permutahedral_representation<std::vector<int>, std::vector<std::vector<std::size_t>>>;
 using coxmesh::Simplex;
+using gudhi_interop::random_simplex;
+using gudhi_interop::to_gudhi;
 
 constexpr std::uint64_t kSeed = 20240601;
 constexpr int kPoints = 1024;       // point pool, cycled through
 constexpr int kSimplices = 64;      // simplex pool; one benchmark iteration enumerates all of them
-
-GSimplex to_gudhi(const Simplex& s) {
-  GSimplex g;
-  g.vertex().assign(s.y.begin(), s.y.begin() + s.d);
-  for (const auto& b : s.partition()) g.partition().emplace_back(b.begin(), b.end());
-  return g;
-}
-
-Simplex random_simplex(std::mt19937_64& rng, int d, int k) {
-  std::vector<int> perm(d + 1);
-  std::iota(perm.begin(), perm.end(), 0);
-  std::shuffle(perm.begin(), perm.end(), rng);
-  std::vector<int> label(d + 1);
-  std::uniform_int_distribution<int> any_block(0, k);
-  for (int j = 0; j <= d; ++j) label[perm[j]] = j <= k ? j : any_block(rng);
-  const int last = label[d];
-  for (int& b : label) b = b == last ? k : (b == k ? last : b);
-  std::vector<std::vector<int>> blocks(k + 1);
-  for (int i = 0; i <= d; ++i) blocks[label[i]].push_back(i);
-  std::uniform_int_distribution<std::int32_t> coord(-100, 100);
-  std::vector<std::int32_t> y(d);
-  for (auto& v : y) v = coord(rng);
-  return Simplex::from_partition(y, blocks);
-}
 
 void add_size_counters(benchmark::State& state, int d) {
   state.counters["simplex_bytes"] = sizeof(Simplex);
@@ -112,7 +91,7 @@ struct CofacetCase {
   CofacetCase(int dim, int kk) : d(dim), k(kk) {
     std::mt19937_64 rng(kSeed * 31 + dim * 100 + kk);
     for (int t = 0; t < kSimplices; ++t) {
-      ours.push_back(random_simplex(rng, dim, kk));
+      ours.push_back(random_simplex(rng, dim, kk, 100));
       gudhi.push_back(to_gudhi(ours.back()));
       cofacets += coxmesh::coface_count(ours.back(), kk + 1);
     }

@@ -42,6 +42,7 @@
 #include "coxmesh/oracle/implicit_oracle.h"
 #include "coxmesh/tracing/trace_manifold.h"
 #include "coxmesh/triangulation/triangulation.h"
+#include "gudhi_interop.h"
 
 namespace {
 
@@ -51,19 +52,9 @@ using GSimplex = GTriangulation::Simplex_handle;
 using GMap = gct::Manifold_tracing<GTriangulation>::Out_simplex_map;
 using GCellComplex = gct::Cell_complex<GMap>;
 using coxmesh::Simplex;
+using gudhi_interop::from_gudhi;
 
 constexpr std::uint64_t kSeed = 0x7AC1E5EEDull;
-
-Simplex from_gudhi(const GSimplex& g) {
-  std::vector<std::int32_t> y(g.vertex().begin(), g.vertex().end());
-  std::vector<std::vector<int>> blocks;
-  for (const auto& part : g.partition()) {
-    std::vector<int> b(part.begin(), part.end());
-    std::sort(b.begin(), b.end());  // GUDHI's parts are not sorted in general
-    blocks.push_back(std::move(b));
-  }
-  return Simplex::from_partition(y, blocks);
-}
 
 // What one library produced: traced simplices with their points (sorted by simplex), and the
 // ambient simplices of the cells of every dimension (sorted), interior and boundary.

@@ -29,12 +29,16 @@
 #include "coxmesh/lattice/faces.h"
 #include "coxmesh/lattice/simplex.h"
 #include "coxmesh/triangulation/triangulation.h"
+#include "gudhi_interop.h"
 
 namespace {
 
 namespace gct = Gudhi::coxeter_triangulation;
 using GSimplex = gct::Permutahedral_representation<std::vector<int>, std::vector<std::vector<std::size_t>>>;
 using coxmesh::Simplex;
+using gudhi_interop::from_gudhi;
+using gudhi_interop::random_simplex;
+using gudhi_interop::to_gudhi;
 
 constexpr std::uint64_t kSeed = 0xC0DEC0FFEEull;
 constexpr int kMinDim = 2, kMaxDim = 10;
@@ -42,24 +46,6 @@ constexpr int kMinDim = 2, kMaxDim = 10;
 constexpr int kMaxLocateDim = 20;
 
 // ---- Conversions ---------------------------------------------------------------------------------
-
-Simplex from_gudhi(const GSimplex& g) {
-  std::vector<std::int32_t> y(g.vertex().begin(), g.vertex().end());
-  std::vector<std::vector<int>> blocks;
-  for (const auto& part : g.partition()) {
-    std::vector<int> b(part.begin(), part.end());
-    std::sort(b.begin(), b.end());  // GUDHI's parts are not sorted in general
-    blocks.push_back(std::move(b));
-  }
-  return Simplex::from_partition(y, blocks);
-}
-
-GSimplex to_gudhi(const Simplex& s) {
-  GSimplex g;
-  g.vertex().assign(s.y.begin(), s.y.begin() + s.d);
-  for (const auto& b : s.partition()) g.partition().emplace_back(b.begin(), b.end());
-  return g;
-}
 
 std::string gudhi_text(const GSimplex& g) {
   std::ostringstream os;
@@ -81,25 +67,6 @@ Eigen::VectorXd random_offset(std::mt19937_64& rng, int d) {
   Eigen::VectorXd b(d);
   for (int i = 0; i < d; ++i) b(i) = u(rng);
   return b;
-}
-
-// A random k-simplex: random y in [-5,5]^d and a random ordered partition of {0..d} into k+1 blocks
-// with d in the last block.
-Simplex random_simplex(std::mt19937_64& rng, int d, int k) {
-  std::vector<int> perm(d + 1);
-  std::iota(perm.begin(), perm.end(), 0);
-  std::shuffle(perm.begin(), perm.end(), rng);
-  std::vector<int> label(d + 1);
-  std::uniform_int_distribution<int> any_block(0, k);
-  for (int j = 0; j <= d; ++j) label[perm[j]] = j <= k ? j : any_block(rng);
-  const int last = label[d];
-  for (int& b : label) b = b == last ? k : (b == k ? last : b);  // swap labels: d's block goes last
-  std::vector<std::vector<int>> blocks(k + 1);
-  for (int i = 0; i <= d; ++i) blocks[label[i]].push_back(i);
-  std::uniform_int_distribution<std::int32_t> coord(-5, 5);
-  std::vector<std::int32_t> y(d);
-  for (auto& v : y) v = coord(rng);
-  return Simplex::from_partition(y, blocks);
 }
 
 template <class Range>
