@@ -233,7 +233,7 @@ GudhiRun gudhi_run(const Eigen::MatrixXd& a, const Eigen::VectorXd& b, const F& 
 
 // ---- coxmesh side -----------------------------------------------------------------------------------
 
-// Forwards to the implicit oracle and records the distinct lattice vertices of the queried simplices.
+// Forwards to the implicit oracle and records the distinct lattice vertices it is asked about.
 class VertexCountingOracle final : public coxmesh::IntersectionOracle {
  public:
   VertexCountingOracle(coxmesh::IntersectionOracle& inner, int d) : inner_(inner), vertices_(d) {}
@@ -242,16 +242,27 @@ class VertexCountingOracle final : public coxmesh::IntersectionOracle {
   bool has_domain() const override { return inner_.has_domain(); }
   std::uint64_t function_evaluations() const override { return inner_.function_evaluations(); }
   coxmesh::Intersection intersect(const coxmesh::Simplex& tau, double* point) override {
+    record(tau);
+    return inner_.intersect(tau, point);
+  }
+  bool pivot_enter(const coxmesh::Simplex& tau) override {
+    record(tau);
+    return inner_.pivot_enter(tau);
+  }
+  int pivot_exit(const std::int32_t* v) override {
+    vertices_.insert(reinterpret_cast<const std::uint32_t*>(v));
+    return inner_.pivot_exit(v);
+  }
+  std::size_t distinct_vertices() const { return vertices_.size(); }
+
+ private:
+  void record(const coxmesh::Simplex& tau) {
     std::int32_t v[coxmesh::kMaxDimension];
     for (int j = 0; j <= tau.k; ++j) {
       tau.vertex(j, v);
       vertices_.insert(reinterpret_cast<const std::uint32_t*>(v));
     }
-    return inner_.intersect(tau, point);
   }
-  std::size_t distinct_vertices() const { return vertices_.size(); }
-
- private:
   coxmesh::IntersectionOracle& inner_;
   coxmesh::PackedKeyIndex vertices_;
 };

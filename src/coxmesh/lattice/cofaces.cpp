@@ -1,6 +1,7 @@
 // Thesis §3; spec §1.5: cofaces by splitting blocks, then re-canonicalising.
 #include "coxmesh/lattice/cofaces.h"
 
+#include <bit>
 #include <string>
 
 namespace coxmesh {
@@ -20,6 +21,43 @@ void CofaceEnumerator::reset(const Simplex& tau, int l) {
   for (int i = 0; i <= d; ++i) elems_[fill[tau.block[i]]++] = static_cast<std::uint8_t>(i);
   started_ = false;
   done_ = false;
+  step_ = steps_ = 0;
+  split_ = k + 1;
+  half_ = 1;
+}
+
+// The next half of a block split, for the blocks b = k, k−1, …, 0 with at least two elements. With
+// t the block's last element (d for b = k) and S ≠ ∅ the elements on the other side:
+//   * half 0, t after S: the block's labels become b (S) and b + 1, the later blocks' rise by one;
+//   * half 1, b < k, t before S: b and b + 1 (S), the later blocks' rise by one;
+//   * half 1, b = k, d before S: S comes first after the rotation (label 0, y − 1), every other
+//     label rises by one.
+// That is: labels g ≥ θ rise by one, S gets label θ; θ = b, b + 1 and 0 respectively.
+bool CofaceEnumerator::start_split() {
+  const int k = tau_.k, d = tau_.d;
+  if (half_ == 0) {
+    half_ = 1;
+  } else {
+    do --split_;
+    while (split_ >= 0 && start_[split_ + 1] - start_[split_] < 2);
+    if (split_ < 0) {
+      done_ = true;
+      return false;
+    }
+    half_ = 0;
+  }
+  const int b = split_, n = start_[b + 1] - start_[b];
+  const int theta = half_ == 0 ? b : b < k ? b + 1 : 0;
+  first_ = start_[b];
+  steps_ = (std::uint32_t{1} << (n - 1)) - 1;
+  step_ = gray_ = 0;
+  s_label_ = static_cast<std::uint8_t>(theta);
+  t_label_ = static_cast<std::uint8_t>(b + (b >= theta));
+  s_shift_ = theta == 0 && half_ == 1;
+  cur_ = tau_;
+  cur_.k = static_cast<std::uint8_t>(k + 1);
+  for (int i = 0; i <= d; ++i) cur_.block[i] = static_cast<std::uint8_t>(tau_.block[i] + (tau_.block[i] >= theta));
+  return true;
 }
 
 // Cut vectors (c_0..c_k), 0 ≤ c_b < n_b, Σ c_b = l − k, in lexicographic order. The smallest one
@@ -83,7 +121,7 @@ bool CofaceEnumerator::next_split(int b) {
   std::uint8_t* lab = label_.data();
   auto& cnt = count_[b];
   if (c == 1) {
-    // Two sub-blocks (every cofacet): binary counting, which is lexicographic order; every
+    // Two sub-blocks: binary counting, which is lexicographic order; every
     // sequence is surjective except all ones (all zeros cannot follow 0…01). Amortised O(1).
     int ones = cnt[1], pos = n - 1;
     while (lab[el[pos]] == 1) {  // stops: a surjective sequence has a 0
@@ -141,7 +179,23 @@ void CofaceEnumerator::build(Simplex& out) const {
 }
 
 bool CofaceEnumerator::next(Simplex& out) {
-  if (done_) return false;
+  if (step_ == steps_) {
+    if (done_) return false;
+    if (l_ != tau_.k + 1) return next_general(out);
+    if (!start_split()) return false;
+  }
+  // Gray code: one element of the split block crosses to the other sub-block.
+  const int bit = std::countr_zero(++step_);
+  gray_ ^= std::uint32_t{1} << bit;
+  const int i = elems_[first_ + bit];
+  const int in_s = (gray_ >> bit) & 1;
+  out = cur_;  // before the update, so the copy does not wait on the narrow stores below
+  out.block[i] = cur_.block[i] = in_s ? s_label_ : t_label_;
+  out.y[i] = cur_.y[i] = tau_.y[i] - (in_s & s_shift_);
+  return true;
+}
+
+bool CofaceEnumerator::next_general(Simplex& out) {
   const int k = tau_.k;
   if (!started_) {
     started_ = true;

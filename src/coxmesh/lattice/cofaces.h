@@ -11,8 +11,12 @@ namespace coxmesh {
 /// Enumerates the l-cofaces of a k-simplex τ (k ≤ l ≤ d), each exactly once (spec §1.5):
 /// every block ω_i is cut into c_i + 1 ordered sub-blocks with Σ c_i = l − k, then the result is
 /// rotated so that d is in the last block again (the sub-blocks after d's move to the front and the
-/// base vertex drops by their indicator). Constant work per coface beyond O(d) to write it out;
-/// no allocation.
+/// base vertex drops by their indicator). No allocation. The order is deterministic but otherwise
+/// unspecified.
+///
+/// Cofacets (l = k + 1, the tracer's case) split one block in two and are walked in Gray-code
+/// order, so consecutive cofacets differ in one index: O(1) work per cofacet beyond copying it out.
+/// Other l: constant work per coface beyond O(d) to write it out.
 ///
 ///   CofaceEnumerator cofacets(tau, tau.dimension() + 1);
 ///   for (Simplex mu; cofacets.next(mu);) use(mu);
@@ -25,6 +29,8 @@ class CofaceEnumerator {
   bool next(Simplex& out);
 
  private:
+  bool start_split();
+  bool next_general(Simplex& out);
   bool first_composition();
   bool next_composition();
   void start_composition();
@@ -39,8 +45,19 @@ class CofaceEnumerator {
   // Elements of τ's blocks, grouped by block: elems_[start_[b] .. start_[b+1]).
   std::array<std::uint8_t, kN> elems_{};
   std::array<int, kN + 1> start_{};
-  // cuts_[b] = c_b; label_[i] = sub-block (0..c_b) of element i within its block; base_[i] = first
-  // coface label of i's block (Σ_{g<b} (c_g + 1)); count_[b] = uses per label in block b.
+
+  // Cofacets: block split_ is cut into two sub-blocks; its last element t stays on one side
+  // (half_ = 0: the second sub-block, 1: the first) while the set S of the others on the far side
+  // runs through the non-empty subsets of the block's first n − 1 elements in Gray-code order
+  // (gray_, step step_ of steps_ = 2^(n−1) − 1). cur_ is the last cofacet written; an element in S
+  // has label s_label_ and y lowered by s_shift_, the others of the block have label t_label_.
+  Simplex cur_;
+  std::uint32_t step_ = 0, steps_ = 0, gray_ = 0;
+  int split_ = 0, half_ = 0, first_ = 0, s_shift_ = 0;
+  std::uint8_t s_label_ = 0, t_label_ = 0;
+
+  // Other l: cuts_[b] = c_b; label_[i] = sub-block (0..c_b) of element i within its block; base_[i]
+  // = first coface label of i's block (Σ_{g<b} (c_g + 1)); count_[b] = uses per label in block b.
   std::array<int, kN> cuts_{};
   std::array<std::uint8_t, kN> label_{};
   std::array<std::uint8_t, kN> base_{};

@@ -13,6 +13,14 @@ namespace coxmesh {
 /// `indices` has k+1 entries; preconditions (checked by the caller): increasing and ≤ l.
 Simplex face_from_indices(const Simplex& sigma, const int* indices, int k);
 
+/// The facet of σ opposite its vertex j (0 ≤ j ≤ dim σ, dim σ ≥ 1): face_from_indices with every
+/// index but j, in one pass. O(d).
+Simplex facet_without(const Simplex& sigma, int j);
+
+/// For a facet τ of μ: the index in μ's vertex order of the vertex of μ not in τ. Vertex i of τ is
+/// vertex i of μ below that index and vertex i + 1 from it on. O(d).
+int extra_vertex_index(const Simplex& tau, const Simplex& mu);
+
 /// Enumerates the k-faces of a simplex in lexicographic order of their vertex indices.
 /// No allocation: reset() and next() work on fixed-size state.
 ///

@@ -4,6 +4,7 @@
 // compare keys only on a hash match. Keys live contiguously in one array: no node per entry.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <utility>
@@ -67,6 +68,14 @@ class PackedKeyIndex {
     return insert(w);
   }
   Simplex simplex(std::uint32_t id, int d) const { return unpack(key(id), d); }
+
+  /// Removes every key; keeps the memory for reuse.
+  void clear() {
+    if (size_ == 0) return;
+    keys_.clear();
+    size_ = 0;
+    std::fill(slots_.begin(), slots_.end(), 0);
+  }
 
   /// Bytes held (keys and slots), for memory reports.
   std::size_t bytes() const { return keys_.capacity() * 4 + slots_.capacity() * 8; }

@@ -79,4 +79,38 @@ Intersection ImplicitOracle::intersect(const Simplex& tau, double* point) {
   return r;
 }
 
+// Door-in/door-out: on μ = τ ∪ {v}, the points of M̂ are λ(t) = (λ_τ − t·w, t) with M(τ)·w = (1, F(v)),
+// a segment leaving τ at t = 0; it leaves μ where the first coordinate λ_j − t·w_j reaches 0.
+bool ImplicitOracle::pivot_enter(const Simplex& tau) {
+  const int n = k_ + 1;
+  double m[SmallLu::kMaxN * SmallLu::kMaxN];
+  std::int32_t v[kMaxDimension];
+  for (int j = 0; j < n; ++j) {
+    tau.vertex(j, v);
+    const double* val = values_at(v);
+    m[j * n] = 1.0;
+    for (int i = 0; i < k_; ++i) m[j * n + 1 + i] = val[i];
+  }
+  if (!pivot_lu_.factor(n, m)) return false;
+  pivot_lu_.solve_unit(0, pivot_lambda_.data());
+  return true;
+}
+
+int ImplicitOracle::pivot_exit(const std::int32_t* v) {
+  const int n = k_ + 1;
+  const double* val = values_at(v);
+  double a[SmallLu::kMaxN], w[SmallLu::kMaxN];
+  a[0] = 1.0;
+  for (int i = 0; i < k_; ++i) a[1 + i] = val[i];
+  pivot_lu_.solve(a, w);
+  int exit = -1;
+  double best = 0;
+  for (int j = 0; j < n; ++j)
+    if (w[j] > 0) {
+      const double t = std::max(pivot_lambda_[j], 0.0) / w[j];
+      if (exit < 0 || t < best) exit = j, best = t;
+    }
+  return exit;
+}
+
 }  // namespace coxmesh

@@ -2,11 +2,13 @@
 // F and D evaluated exactly once per lattice vertex.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "coxmesh/lattice/packed_index.h"
 #include "coxmesh/oracle/implicit_function.h"
 #include "coxmesh/oracle/intersection_oracle.h"
+#include "coxmesh/oracle/small_lu.h"
 #include "coxmesh/triangulation/triangulation.h"
 
 namespace coxmesh {
@@ -26,6 +28,8 @@ class ImplicitOracle final : public IntersectionOracle {
   bool has_domain() const override { return domain_ != nullptr; }
   Intersection intersect(const Simplex& tau, double* point) override;
   std::uint64_t function_evaluations() const override { return evaluations_; }
+  bool pivot_enter(const Simplex& tau) override;
+  int pivot_exit(const std::int32_t* v) override;
 
   /// Switches the per-vertex cache off (every query re-evaluates F): the benchmark's ablation.
   void set_cache_enabled(bool on) { cache_enabled_ = on; }
@@ -40,6 +44,8 @@ class ImplicitOracle final : public IntersectionOracle {
   PackedKeyIndex cache_;
   std::vector<double> values_;  // stride_ per cached vertex: F values, then D
   std::vector<double> scratch_;
+  SmallLu pivot_lu_;                        // M(τ) of the last pivot_enter
+  std::array<double, SmallLu::kMaxN> pivot_lambda_;  // its barycentric solution
   std::uint64_t evaluations_ = 0;
   bool cache_enabled_ = true;
 };

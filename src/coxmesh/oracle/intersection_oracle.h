@@ -26,6 +26,15 @@ class IntersectionOracle {
   virtual bool has_domain() const { return false; }
   /// Number of function evaluations so far (implicit oracles count one per lattice vertex).
   virtual std::uint64_t function_evaluations() const { return 0; }
+
+  /// Optional door-in/door-out guess (the pivoting step of PL continuation; spec §2.2). M̂ meets
+  /// each cofacet μ of a transverse k-simplex τ in a segment whose ends lie on exactly two facets of
+  /// μ: τ and one other. After pivot_enter(τ) returned true, pivot_exit(v) guesses that other facet
+  /// for μ = τ ∪ {v} (v: the lattice vertex of μ not in τ) and returns the index, in τ's vertex
+  /// order, of the vertex of τ it lacks; −1 means no guess. The tracer checks every guess with
+  /// intersect(), so a wrong guess costs time, never correctness. The defaults make no guesses.
+  virtual bool pivot_enter(const Simplex& /*tau*/) { return false; }
+  virtual int pivot_exit(const std::int32_t* /*v*/) { return -1; }
 };
 
 /// A function returned NaN or ±Inf at a point; the message names the point.

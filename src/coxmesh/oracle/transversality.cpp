@@ -10,6 +10,8 @@
 #include <limits>
 #include <utility>
 
+#include "coxmesh/oracle/small_lu.h"
+
 namespace coxmesh {
 
 namespace {
@@ -95,43 +97,33 @@ bool lexicographic_solve(int n, const double* m, double* lambda) {
     }
     if (all_pos || all_neg) return false;
   }
-  // LU with partial pivoting, then the inverse column by column.
-  std::array<double, kMaxN * kMaxN> lu;
-  std::array<int, kMaxN> perm;
+  SmallLu lu;
+  if (!lu.factor(n, m)) return exact_solve(n, m, lambda);
+  // Usually λ = M⁻¹·e₀ alone decides: a certainly negative λ_j rejects, all certainly positive
+  // accept (the lexicographic rule only looks further along a row whose leading entry is 0).
+  constexpr double u = std::numeric_limits<double>::epsilon() / 2;
+  const double factor = lu.error_factor();
+  if (n * u * factor < 1e-6) {
+    lu.solve_unit(0, lambda);
+    double size = 0;
+    for (int r = 0; r < n; ++r) size = std::max(size, std::abs(lambda[r]));
+    const double err = 8.0 * n * u * factor * size;
+    bool positive = true;
+    for (int r = 0; r < n; ++r) {
+      if (lambda[r] < -err) return false;
+      positive &= lambda[r] > err;
+    }
+    if (positive) return true;
+  }
+  // Undecided: the whole inverse, column by column, and the lexicographic signs of its rows.
   double norm_m = 0;
   for (int r = 0; r < n; ++r) {
     double row = 0;
     for (int c = 0; c < n; ++c) row += std::abs(m[c * n + r]);
     norm_m = std::max(norm_m, row);
   }
-  for (int i = 0; i < n * n; ++i) lu[i] = m[i];
-  for (int r = 0; r < n; ++r) perm[r] = r;
-  auto at = [&](int r, int c) -> double& { return lu[c * n + r]; };
-  for (int c = 0; c < n; ++c) {
-    int p = c;
-    for (int r = c + 1; r < n; ++r)
-      if (std::abs(at(r, c)) > std::abs(at(p, c))) p = r;
-    if (at(p, c) == 0) return exact_solve(n, m, lambda);
-    if (p != c) {
-      for (int j = 0; j < n; ++j) std::swap(at(p, j), at(c, j));
-      std::swap(perm[p], perm[c]);
-    }
-    for (int r = c + 1; r < n; ++r) {
-      const double f = at(r, c) /= at(c, c);
-      for (int j = c + 1; j < n; ++j) at(r, j) -= f * at(c, j);
-    }
-  }
   std::array<double, kMaxN * kMaxN> inv;  // column-major
-  for (int c = 0; c < n; ++c) {
-    double* x = inv.data() + c * n;
-    for (int r = 0; r < n; ++r) x[r] = perm[r] == c ? 1.0 : 0.0;
-    for (int r = 0; r < n; ++r)
-      for (int j = 0; j < r; ++j) x[r] -= at(r, j) * x[j];
-    for (int r = n - 1; r >= 0; --r) {
-      for (int j = r + 1; j < n; ++j) x[r] -= at(r, j) * x[j];
-      x[r] /= at(r, r);
-    }
-  }
+  for (int c = 0; c < n; ++c) lu.solve_unit(c, inv.data() + c * n);
   double norm_inv = 0, max_inv = 0;
   for (int r = 0; r < n; ++r) {
     double row = 0;

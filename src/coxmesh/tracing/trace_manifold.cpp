@@ -4,7 +4,6 @@
 #include <array>
 #include <atomic>
 #include <cmath>
-#include <mutex>
 #include <sstream>
 
 #include "coxmesh/lattice/cofaces.h"
@@ -30,38 +29,70 @@ std::string point_text(std::span<const double> x) {
   return os.str();
 }
 
+// What the walk knows of a tested k-simplex.
+enum class Kind : std::uint8_t {
+  miss,     // not transverse
+  inside,   // transverse inside the domain: in S
+  outside,  // transverse, D̂ ≥ 0 at its point: its cofacets cross the boundary
+  clipped,  // transverse, its point outside the box: not followed
+};
+struct Found {
+  Kind kind;
+  std::uint32_t index;  // where the walk keeps the simplex (S id, or its point and D̂)
+};
+
+// The other transverse facet of a cofacet μ of τ ∈ S: M̂ ∩ μ is a segment between exactly two
+// transverse facets of μ, τ and this one (spec §2.2). The oracle's door-in/door-out guess is
+// tested first; without a guess, or when it is wrong, every facet is. `test` classifies a facet.
+template <class Test>
+Found other_transverse_facet(IntersectionOracle& oracle, bool pivots, const Simplex& tau, const Simplex& mu,
+                             Test&& test) {
+  const int entry = extra_vertex_index(tau, mu);  // μ without its vertex `entry` is τ
+  int guess = -1;
+  if (pivots) {
+    std::int32_t v[kMaxDimension];
+    mu.vertex(entry, v);
+    if (const int g = oracle.pivot_exit(v); g >= 0) {
+      guess = g < entry ? g : g + 1;
+      if (const Found f = test(facet_without(mu, guess)); f.kind != Kind::miss) return f;
+    }
+  }
+  for (int j = 0; j <= mu.k; ++j)
+    if (j != entry && j != guess)
+      if (const Found f = test(facet_without(mu, j)); f.kind != Kind::miss) return f;
+  return {Kind::miss, 0};
+}
+
 // Tracing state: S lives in the result; every other tested k-simplex is remembered in `others_`
 // (not transverse, outside the box, or transverse outside the domain with its point), so the
 // oracle sees each k-simplex at most once.
 class Tracer {
  public:
   Tracer(const Triangulation& t, std::vector<IntersectionOracle*> oracles, const TraceOptions& options)
-      : t_(t), oracles_(std::move(oracles)), oracle_(*oracles_[0]), options_(options), d_(t.dimension()),
-        k_(oracle_.codimension()), others_(packed_words(d_)) {
+      : t_(t), oracle_(*oracles[0]), options_(options), d_(t.dimension()), k_(oracle_.codimension()),
+        others_(packed_words(d_)) {
     result_.ambient_dimension = d_;
     result_.codimension = k_;
     result_.simplices = PackedKeyIndex(packed_words(d_));
     result_.boundary_simplices = PackedKeyIndex(packed_words(d_));
+    for (IntersectionOracle* o : oracles) workers_.push_back(Worker{o, PackedKeyIndex(packed_words(d_)), {}, {}, 0});
   }
 
   void add_seed(std::span<const double> seed, bool must_succeed);
   void walk();
   TraceResult finish() {
-    for (IntersectionOracle* o : oracles_) result_.function_evaluations += o->function_evaluations();
-    for (std::uint64_t c : worker_calls_) result_.oracle_calls += c;
+    for (const Worker& w : workers_) {
+      result_.function_evaluations += w.oracle->function_evaluations();
+      result_.oracle_calls += w.calls;
+    }
     return std::move(result_);
   }
 
  private:
-  enum class Kind { miss, inside, outside };
-  struct Found {
-    Kind kind;
-    std::uint32_t index;  // S id (inside) or outside-point index
-  };
   static constexpr std::uint32_t kMiss = 0xFFFFFFFFu, kOutsideBox = 0xFFFFFFFEu;
 
   Found classify(const Simplex& tau);
-  void add_boundary(const Simplex& mu, std::uint32_t inside, std::uint32_t outside);
+  void add_boundary(const Simplex& mu, std::uint32_t inside, const double* outside);
   bool start_level();  // false when the simplex limit stops the walk
 
   // ---- Parallel walk (level-synchronous) ----
@@ -72,20 +103,21 @@ class Tracer {
     std::vector<double> inside_data, boundary_points;
     void clear() { inside_keys.clear(), boundary_keys.clear(), inside_data.clear(), boundary_points.clear(); }
   };
-  // Tested simplices not in S, shared by the workers: 64 shards, one mutex each.
-  struct Shard {
-    std::mutex mutex;
-    PackedKeyIndex index{1};
-    std::vector<std::uint32_t> payload;  // kMiss, kOutsideBox, or index into data (+ kInsideBit)
+  // A worker's oracle and its memory of the simplices it tested in the current level that were not
+  // in S: workers share nothing but S, which no one modifies during a level.
+  struct Worker {
+    IntersectionOracle* oracle;
+    PackedKeyIndex tested;
+    std::vector<std::uint32_t> payload;  // kMiss, kOutsideBox, or index into data
     std::vector<double> data;            // (d + 1) per transverse simplex: point, D̂
+    std::uint64_t calls;
   };
-  static constexpr std::uint32_t kInsideBit = 0x80000000u;
   void walk_parallel();
-  void process_chunk(std::uint32_t begin, std::uint32_t end, int worker, ChunkOutput& out);
+  void process_chunk(std::uint32_t begin, std::uint32_t end, Worker& worker, ChunkOutput& out);
+  Found classify_in_level(const Simplex& tau, Worker& worker, ChunkOutput& out);
   void merge(const ChunkOutput& out);
 
   const Triangulation& t_;
-  std::vector<IntersectionOracle*> oracles_;
   IntersectionOracle& oracle_;  // the first worker's; seeds and the sequential walk use it
   const TraceOptions& options_;
   const int d_, k_;
@@ -98,22 +130,21 @@ class Tracer {
   std::uint32_t level_end_ = 0;               // end of the current breadth-first level
   std::size_t last_progress_ = 0;
   std::vector<double> point_;
-  std::vector<std::uint64_t> worker_calls_;   // oracle calls of the parallel walk, per worker
-  std::vector<std::unique_ptr<Shard>> shards_;
+  std::vector<Worker> workers_;
   std::vector<ChunkOutput> chunks_;
   std::atomic<bool> box_reached_{false};
 };
 
-Tracer::Found Tracer::classify(const Simplex& tau) {
+Found Tracer::classify(const Simplex& tau) {
   std::uint32_t key[packed_words(kMaxDimension)];
   pack(tau, key);
   const std::uint64_t h = hash_words(key, packed_words(d_));
   if (std::uint32_t id = result_.simplices.find(key, h); id != PackedKeyIndex::kAbsent) return {Kind::inside, id};
   if (std::uint32_t id = others_.find(key, h); id != PackedKeyIndex::kAbsent) {
     const std::uint32_t p = other_payload_[id];
-    return p >= kOutsideBox ? Found{Kind::miss, 0} : Found{Kind::outside, p};
+    return p == kMiss ? Found{Kind::miss, 0} : p == kOutsideBox ? Found{Kind::clipped, 0} : Found{Kind::outside, p};
   }
-  ++result_.oracle_calls;
+  ++workers_[0].calls;
   point_.resize(d_);
   const Intersection x = oracle_.intersect(tau, point_.data());
   std::uint32_t payload = kMiss;
@@ -127,25 +158,24 @@ Tracer::Found Tracer::classify(const Simplex& tau) {
       domain_values_.push_back(x.domain);
       return {Kind::inside, id};
     } else {
-      payload = static_cast<std::uint32_t>(outside_.size() / (d_ + 1));
+      payload = static_cast<std::uint32_t>(outside_.size());
       outside_.insert(outside_.end(), point_.begin(), point_.end());
       outside_.push_back(x.domain);
     }
   }
   others_.insert(key, h);
   other_payload_.push_back(payload);
-  return payload >= kOutsideBox ? Found{Kind::miss, 0} : Found{Kind::outside, payload};
+  return payload == kMiss ? Found{Kind::miss, 0} : payload == kOutsideBox ? Found{Kind::clipped, 0} : Found{Kind::outside, payload};
 }
 
 // μ ∩ M̂ is the segment between the points of its two transverse facets; D̂ is linear on it, so the
-// boundary point is where it crosses 0.
-void Tracer::add_boundary(const Simplex& mu, std::uint32_t inside, std::uint32_t outside) {
+// boundary point is where it crosses 0. `outside` = point and D̂ of the facet outside the domain.
+void Tracer::add_boundary(const Simplex& mu, std::uint32_t inside, const double* outside) {
   if (!result_.boundary_simplices.insert(mu).second) return;
   const double* p = result_.points.data() + static_cast<std::size_t>(inside) * d_;
-  const double* q = outside_.data() + static_cast<std::size_t>(outside) * (d_ + 1);
-  const double dp = domain_values_[inside], dq = q[d_];
+  const double dp = domain_values_[inside], dq = outside[d_];
   const double t = dp / (dp - dq);  // dp < 0 ≤ dq
-  for (int i = 0; i < d_; ++i) result_.boundary_points.push_back(p[i] + t * (q[i] - p[i]));
+  for (int i = 0; i < d_; ++i) result_.boundary_points.push_back(p[i] + t * (outside[i] - p[i]));
 }
 
 // The simplex limit is checked where a breadth-first level starts, in the sequential and the
@@ -164,43 +194,33 @@ bool Tracer::start_level() {
 }
 
 void Tracer::walk() {
-  if (oracles_.size() > 1) return walk_parallel();
-  Simplex tau, mu, facet;
+  if (workers_.size() > 1) return walk_parallel();
+  Simplex tau, mu;
   CofaceEnumerator cofacets;
-  FaceEnumerator facets;
   for (; head_ < result_.simplices.size(); ++head_) {
     if (head_ >= level_end_ && !start_level()) return;
     tau = result_.simplices.simplex(head_, d_);
+    const bool pivots = oracle_.pivot_enter(tau);
     cofacets.reset(tau, k_ + 1);
     while (cofacets.next(mu)) {
-      facets.reset(mu, k_);
-      while (facets.next(facet)) {
-        if (facet == tau) continue;
-        const Found f = classify(facet);
-        if (f.kind == Kind::outside) add_boundary(mu, head_, f.index);
-      }
+      const Found f = other_transverse_facet(oracle_, pivots, tau, mu, [this](const Simplex& s) { return classify(s); });
+      if (f.kind == Kind::outside) add_boundary(mu, head_, outside_.data() + f.index);
     }
   }
 }
 
 void Tracer::walk_parallel() {
-  constexpr std::uint32_t kChunk = 128;
-  if (shards_.empty()) {
-    for (int s = 0; s < 64; ++s) {
-      shards_.push_back(std::make_unique<Shard>());
-      shards_.back()->index = PackedKeyIndex(packed_words(d_));
-    }
-    worker_calls_.assign(oracles_.size(), 0);
-  }
+  constexpr std::uint32_t kChunk = 64;
   while (head_ < result_.simplices.size()) {
     if (!start_level()) return;
     const std::uint32_t begin = head_, end = level_end_;
     const std::size_t n = (end - begin + kChunk - 1) / kChunk;
     if (chunks_.size() < n) chunks_.resize(n);
-    parallel_for(n, static_cast<int>(oracles_.size()), [&](std::size_t c, int worker) {
+    for (Worker& w : workers_) w.tested.clear(), w.payload.clear(), w.data.clear();
+    parallel_for(n, static_cast<int>(workers_.size()), [&](std::size_t c, int worker) {
       chunks_[c].clear();
       const std::uint32_t a = begin + static_cast<std::uint32_t>(c) * kChunk;
-      process_chunk(a, std::min(end, a + kChunk), worker, chunks_[c]);
+      process_chunk(a, std::min(end, a + kChunk), workers_[worker], chunks_[c]);
     });
     for (std::size_t c = 0; c < n; ++c) merge(chunks_[c]);
     if (box_reached_.load()) result_.status = TraceStatus::box_reached;
@@ -208,67 +228,60 @@ void Tracer::walk_parallel() {
   }
 }
 
-// Reads S (not modified during the phase), looks up and fills the sharded table of tested
-// simplices, and writes discoveries to `out` only.
-void Tracer::process_chunk(std::uint32_t begin, std::uint32_t end, int worker, ChunkOutput& out) {
-  IntersectionOracle& oracle = *oracles_[worker];
+// The parallel classify: S is read-only during a level, so discoveries go to `out` (a worker
+// takes chunks in increasing order, so its first encounter of a simplex is output first).
+Found Tracer::classify_in_level(const Simplex& tau, Worker& worker, ChunkOutput& out) {
   const int words = packed_words(d_);
-  Simplex tau, mu, facet;
+  std::uint32_t key[packed_words(kMaxDimension)];
+  pack(tau, key);
+  const std::uint64_t h = hash_words(key, words);
+  if (std::uint32_t id = result_.simplices.find(key, h); id != PackedKeyIndex::kAbsent) return {Kind::inside, id};
+  const auto [id, fresh] = worker.tested.insert(key, h);
+  if (fresh) {
+    ++worker.calls;
+    double found[kMaxDimension + 1];  // point, D̂
+    const Intersection x = worker.oracle->intersect(tau, found);
+    found[d_] = x.domain;
+    std::uint32_t payload = kMiss;
+    if (x.hit && options_.box && !options_.box->contains(found)) {
+      payload = kOutsideBox;
+      box_reached_.store(true, std::memory_order_relaxed);
+    } else if (x.hit) {
+      payload = static_cast<std::uint32_t>(worker.data.size());
+      worker.data.insert(worker.data.end(), found, found + d_ + 1);
+      if (x.domain < 0) {
+        out.inside_keys.insert(out.inside_keys.end(), key, key + words);
+        out.inside_data.insert(out.inside_data.end(), found, found + d_ + 1);
+      }
+    }
+    worker.payload.push_back(payload);
+  }
+  const std::uint32_t p = worker.payload[id];
+  if (p == kMiss) return {Kind::miss, 0};
+  if (p == kOutsideBox) return {Kind::clipped, 0};
+  return {worker.data[p + d_] < 0 ? Kind::inside : Kind::outside, p};
+}
+
+void Tracer::process_chunk(std::uint32_t begin, std::uint32_t end, Worker& worker, ChunkOutput& out) {
+  const int words = packed_words(d_);
+  Simplex tau, mu;
   CofaceEnumerator cofacets;
-  FaceEnumerator facets;
-  std::uint32_t key[packed_words(kMaxDimension)], mu_key[packed_words(kMaxDimension)];
-  double found[kMaxDimension + 1];  // point, D̂ of a transverse simplex
+  std::uint32_t mu_key[packed_words(kMaxDimension)];
   for (std::uint32_t id = begin; id < end; ++id) {
     tau = result_.simplices.simplex(id, d_);
+    const bool pivots = worker.oracle->pivot_enter(tau);
     cofacets.reset(tau, k_ + 1);
     while (cofacets.next(mu)) {
-      facets.reset(mu, k_);
-      while (facets.next(facet)) {
-        if (facet == tau) continue;
-        pack(facet, key);
-        const std::uint64_t h = hash_words(key, words);
-        if (result_.simplices.find(key, h) != PackedKeyIndex::kAbsent) continue;
-        Shard& shard = *shards_[h >> 58];
-        std::uint32_t payload = kMiss;
-        bool known = false;
-        {
-          std::lock_guard<std::mutex> lock(shard.mutex);
-          if (const std::uint32_t t = shard.index.find(key, h); t != PackedKeyIndex::kAbsent) {
-            known = true;
-            payload = shard.payload[t];
-            if (payload < kOutsideBox)
-              std::copy_n(shard.data.data() + static_cast<std::size_t>(payload & ~kInsideBit) * (d_ + 1), d_ + 1, found);
-          }
-        }
-        if (!known) {
-          ++worker_calls_[worker];
-          const Intersection x = oracle.intersect(facet, found);
-          found[d_] = x.domain;
-          if (!x.hit) payload = kMiss;
-          else if (options_.box && !options_.box->contains(found)) payload = kOutsideBox;
-          else payload = x.domain < 0 ? kInsideBit : 0;
-          std::lock_guard<std::mutex> lock(shard.mutex);
-          if (shard.index.insert(key, h).second) {
-            if (payload < kOutsideBox) {
-              payload |= static_cast<std::uint32_t>(shard.data.size() / (d_ + 1));
-              shard.data.insert(shard.data.end(), found, found + d_ + 1);
-            }
-            shard.payload.push_back(payload);
-          }
-        }
-        if (payload == kOutsideBox) box_reached_.store(true, std::memory_order_relaxed);
-        if (payload >= kOutsideBox) continue;
-        if (payload & kInsideBit) {
-          out.inside_keys.insert(out.inside_keys.end(), key, key + words);
-          out.inside_data.insert(out.inside_data.end(), found, found + d_ + 1);
-        } else {  // transverse outside the domain: μ crosses the boundary (see add_boundary)
-          const double* p = result_.points.data() + static_cast<std::size_t>(id) * d_;
-          const double dp = domain_values_[id], t = dp / (dp - found[d_]);
-          pack(mu, mu_key);
-          out.boundary_keys.insert(out.boundary_keys.end(), mu_key, mu_key + words);
-          for (int i = 0; i < d_; ++i) out.boundary_points.push_back(p[i] + t * (found[i] - p[i]));
-        }
-      }
+      const Found f = other_transverse_facet(*worker.oracle, pivots, tau, mu,
+                                             [&](const Simplex& s) { return classify_in_level(s, worker, out); });
+      if (f.kind != Kind::outside) continue;
+      // μ crosses the boundary (see add_boundary)
+      const double* q = worker.data.data() + f.index;
+      const double* p = result_.points.data() + static_cast<std::size_t>(id) * d_;
+      const double dp = domain_values_[id], t = dp / (dp - q[d_]);
+      pack(mu, mu_key);
+      out.boundary_keys.insert(out.boundary_keys.end(), mu_key, mu_key + words);
+      for (int i = 0; i < d_; ++i) out.boundary_points.push_back(p[i] + t * (q[i] - p[i]));
     }
   }
 }
