@@ -227,7 +227,7 @@ void run(TraceCliOptions o) {
 
   if (progress) progress->phase("building the cell complex");
   const auto t1 = Clock::now();
-  const CellComplex cc = build_cell_complex(std::move(traced));
+  const CellComplex cc = build_cell_complex(std::move(traced), o.threads);
   const double complex_s = seconds_since(t1);
   if (progress) progress->phase("computing the topology");
   const auto t2 = Clock::now();

@@ -1,7 +1,11 @@
 // Multi-threaded tracing gives the same result, order and bits included, for every thread count,
 // equal to the sequential walk's; also when a limit or a box truncates the walk.
+// The cell complex built with several threads is identical too, cell numbering included.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
+#include "coxmesh/cell_complex/cell_complex.h"
 #include "coxmesh/oracle/implicit_oracle.h"
 #include "coxmesh/tracing/trace_manifold.h"
 #include "expect_identical.h"
@@ -60,4 +64,45 @@ TEST(ParallelTracing, ErrorsFromWorkersReachTheCaller) {
   options.threads = 2;
   EXPECT_THROW(trace_manifold(t, [&] { return std::make_unique<ImplicitOracle>(t, bad); }, {bad->seed()}, options),
                EvaluationError);
+}
+
+TEST(ParallelCellComplex, IdenticalForEveryThreadCount) {
+  struct Complex {
+    std::string name;
+    FunctionPtr f, domain;
+    Triangulation t;
+    std::vector<double> seed;
+  };
+  const std::vector<Complex> cases = {
+      {"S2 in R3", sphere(2, 3, 1.0), nullptr, Triangulation::coxeter(3).with_longest_edge(0.05), {}},
+      {"S3 in R5", sphere(3, 5, 1.0), nullptr, Triangulation::coxeter(5).with_longest_edge(0.5).rotated(1), {}},
+      {"flat torus cut", product(sphere(1, 2, 1.0), sphere(1, 2, 1.0)), half_space_domain({1, 1, 0, 0}, 0.5),
+       Triangulation::coxeter(4).with_longest_edge(0.25), {-1, 0, 1, 0}},
+  };
+  auto same_level = [](const CellLevel& a, const CellLevel& b) {
+    if (a.size() != b.size() || a.facet_offsets != b.facet_offsets || a.facet_ids != b.facet_ids ||
+        a.boundary_facet != b.boundary_facet)
+      return false;
+    for (std::uint32_t c = 0; c < a.size(); ++c)
+      if (!std::equal(a.simplices.key(c), a.simplices.key(c) + a.simplices.words(), b.simplices.key(c))) return false;
+    return true;
+  };
+  for (const Complex& c : cases) {
+    SCOPED_TRACE(c.name);
+    ImplicitOracle oracle(c.t, c.f, c.domain);
+    const TraceResult traced = trace_manifold(c.t, oracle, {c.seed.empty() ? c.f->seed() : c.seed});
+    const CellComplex one = build_cell_complex(TraceResult(traced), 1);
+    std::size_t cells = 0;
+    for (const CellLevel& l : one.interior) cells += l.size();
+    EXPECT_GT(cells, 20000u);  // several batches of the parallel construction
+    for (int threads : {2, 3, 4}) {
+      const CellComplex many = build_cell_complex(TraceResult(traced), threads);
+      ASSERT_EQ(one.interior.size(), many.interior.size());
+      ASSERT_EQ(one.boundary.size(), many.boundary.size());
+      for (std::size_t j = 0; j < one.interior.size(); ++j) EXPECT_TRUE(same_level(one.interior[j], many.interior[j])) << j;
+      for (std::size_t j = 0; j < one.boundary.size(); ++j) EXPECT_TRUE(same_level(one.boundary[j], many.boundary[j])) << j;
+      EXPECT_EQ(one.vertices, many.vertices);
+      EXPECT_EQ(one.boundary_vertices, many.boundary_vertices);
+    }
+  }
 }

@@ -2,10 +2,22 @@
 #include "coxmesh/cell_complex/cell_complex.h"
 
 #include "coxmesh/lattice/cofaces.h"
+#include "coxmesh/util/parallel_for.h"
 
 namespace coxmesh {
 
 namespace {
+
+// Facet lists from the incidences (cell << 32) | facet: a counting sort by cell keeps each cell's
+// facets in increasing order.
+void set_facets(CellLevel& level, const std::vector<std::uint64_t>& incidences) {
+  level.facet_offsets.assign(level.size() + 1, 0);
+  for (std::uint64_t e : incidences) ++level.facet_offsets[(e >> 32) + 1];
+  for (std::uint32_t c = 0; c < level.size(); ++c) level.facet_offsets[c + 1] += level.facet_offsets[c];
+  level.facet_ids.resize(incidences.size());
+  std::vector<std::uint32_t> fill(level.facet_offsets.begin(), level.facet_offsets.end() - 1);
+  for (std::uint64_t e : incidences) level.facet_ids[fill[e >> 32]++] = static_cast<std::uint32_t>(e);
+}
 
 // Level j from level j − 1: every l-coface ν of a cell's simplex is a cell, with that cell as facet.
 CellLevel next_level(const CellLevel& prev, int d, int l) {
@@ -23,14 +35,61 @@ CellLevel next_level(const CellLevel& prev, int d, int l) {
       incidences.push_back((static_cast<std::uint64_t>(id) << 32) | c);
     }
   }
-  // Counting sort by cell keeps each cell's facets in increasing order.
-  level.facet_offsets.assign(level.size() + 1, 0);
-  for (std::uint64_t e : incidences) ++level.facet_offsets[(e >> 32) + 1];
-  for (std::uint32_t c = 0; c < level.size(); ++c) level.facet_offsets[c + 1] += level.facet_offsets[c];
-  level.facet_ids.resize(incidences.size());
-  std::vector<std::uint32_t> fill(level.facet_offsets.begin(), level.facet_offsets.end() - 1);
-  for (std::uint64_t e : incidences) level.facet_ids[fill[e >> 32]++] = static_cast<std::uint32_t>(e);
+  set_facets(level, incidences);
   return level;
+}
+
+// The same level with `workers` threads: batches of cells have their cofaces enumerated, packed
+// and hashed in parallel, then numbered in cell order (hashes known ahead, so the table slots are
+// prefetched). Batches bound the extra memory.
+CellLevel next_level_parallel(const CellLevel& prev, int d, int l, int workers) {
+  constexpr std::uint32_t kChunk = 256, kChunksPerBatch = 64;
+  const int words = packed_words(d);
+  struct Chunk {
+    std::vector<std::uint32_t> keys, facets;
+    std::vector<std::uint64_t> hashes;
+  };
+  CellLevel level;
+  level.simplices = PackedKeyIndex(words);
+  level.simplices.reserve(prev.size());
+  std::vector<std::uint64_t> incidences;
+  std::vector<Chunk> chunks(kChunksPerBatch);
+  for (std::uint32_t first = 0; first < prev.size(); first += kChunk * kChunksPerBatch) {
+    const std::uint32_t last = std::min<std::uint64_t>(prev.size(), std::uint64_t{first} + kChunk * kChunksPerBatch);
+    const std::size_t n = (last - first + kChunk - 1) / kChunk;
+    parallel_for(n, workers, [&](std::size_t t, int) {
+      Chunk& out = chunks[t];
+      out.keys.clear(), out.facets.clear(), out.hashes.clear();
+      CofaceEnumerator cofaces;
+      Simplex nu;
+      std::uint32_t key[packed_words(kMaxDimension)];
+      const std::uint32_t a = first + static_cast<std::uint32_t>(t) * kChunk, b = std::min(last, a + kChunk);
+      for (std::uint32_t c = a; c < b; ++c) {
+        cofaces.reset(prev.simplices.simplex(c, d), l);
+        while (cofaces.next(nu)) {
+          pack(nu, key);
+          out.keys.insert(out.keys.end(), key, key + words);
+          out.hashes.push_back(hash_words(key, words));
+          out.facets.push_back(c);
+        }
+      }
+    });
+    constexpr std::size_t kAhead = 8;
+    for (std::size_t t = 0; t < n; ++t) {
+      const Chunk& in = chunks[t];
+      for (std::size_t r = 0; r < in.hashes.size(); ++r) {
+        if (r + kAhead < in.hashes.size()) level.simplices.prefetch(in.hashes[r + kAhead]);
+        const std::uint32_t id = level.simplices.insert(in.keys.data() + r * words, in.hashes[r]).first;
+        incidences.push_back((static_cast<std::uint64_t>(id) << 32) | in.facets[r]);
+      }
+    }
+  }
+  set_facets(level, incidences);
+  return level;
+}
+
+CellLevel make_level(const CellLevel& prev, int d, int l, int workers) {
+  return workers > 1 ? next_level_parallel(prev, d, l, workers) : next_level(prev, d, l);
 }
 
 }  // namespace
@@ -43,7 +102,8 @@ std::size_t CellComplex::bytes() const {
   return b;
 }
 
-CellComplex build_cell_complex(TraceResult&& trace) {
+CellComplex build_cell_complex(TraceResult&& trace, int threads) {
+  const int workers = resolve_threads(threads);
   CellComplex cc;
   const int d = trace.ambient_dimension, k = trace.codimension, m = d - k;
   cc.ambient_dimension = d;
@@ -60,8 +120,8 @@ CellComplex build_cell_complex(TraceResult&& trace) {
     cc.boundary_vertices = std::move(trace.boundary_points);
   }
   for (int j = 1; j <= m; ++j) {
-    cc.interior.push_back(next_level(cc.interior[j - 1], d, k + j));
-    if (has_boundary && j <= m - 1) cc.boundary.push_back(next_level(cc.boundary[j - 1], d, k + 1 + j));
+    cc.interior.push_back(make_level(cc.interior[j - 1], d, k + j, workers));
+    if (has_boundary && j <= m - 1) cc.boundary.push_back(make_level(cc.boundary[j - 1], d, k + 1 + j, workers));
   }
   if (!has_boundary) cc.boundary.resize(std::max(m, 0));  // empty levels, uniform shape
   if (has_boundary)

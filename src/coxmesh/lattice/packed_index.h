@@ -69,6 +69,10 @@ class PackedKeyIndex {
   }
   Simplex simplex(std::uint32_t id, int d) const { return unpack(key(id), d); }
 
+  /// Hints the cache to load the first slot probed for this hash (batched inserts with hashes
+  /// computed ahead).
+  void prefetch(std::uint64_t hash) const { __builtin_prefetch(slots_.data() + (hash & mask_)); }
+
   /// Removes every key; keeps the memory for reuse.
   void clear() {
     if (size_ == 0) return;

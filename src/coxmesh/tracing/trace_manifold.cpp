@@ -96,12 +96,15 @@ class Tracer {
   bool start_level();  // false when the simplex limit stops the walk
 
   // ---- Parallel walk (level-synchronous) ----
-  // What one chunk of a level discovered, in encounter order: inside simplices (key, point, D̂)
-  // and boundary simplices (key, point). Merged in chunk order, so the result is deterministic.
+  // What one chunk of a level discovered, in encounter order: inside simplices (key, hash, point,
+  // D̂) and boundary simplices (key, point). Merged in chunk order, so the result is deterministic.
   struct ChunkOutput {
     std::vector<std::uint32_t> inside_keys, boundary_keys;
+    std::vector<std::uint64_t> inside_hashes;
     std::vector<double> inside_data, boundary_points;
-    void clear() { inside_keys.clear(), boundary_keys.clear(), inside_data.clear(), boundary_points.clear(); }
+    void clear() {
+      inside_keys.clear(), boundary_keys.clear(), inside_hashes.clear(), inside_data.clear(), boundary_points.clear();
+    }
   };
   // A worker's oracle and its memory of the simplices it tested in the current level that were not
   // in S: workers share nothing but S, which no one modifies during a level.
@@ -251,6 +254,7 @@ Found Tracer::classify_in_level(const Simplex& tau, Worker& worker, ChunkOutput&
       worker.data.insert(worker.data.end(), found, found + d_ + 1);
       if (x.domain < 0) {
         out.inside_keys.insert(out.inside_keys.end(), key, key + words);
+        out.inside_hashes.push_back(h);
         out.inside_data.insert(out.inside_data.end(), found, found + d_ + 1);
       }
     }
@@ -288,12 +292,16 @@ void Tracer::process_chunk(std::uint32_t begin, std::uint32_t end, Worker& worke
 
 void Tracer::merge(const ChunkOutput& out) {
   const int words = packed_words(d_);
-  for (std::size_t r = 0; r * words < out.inside_keys.size(); ++r)
-    if (result_.simplices.insert(out.inside_keys.data() + r * words).second) {
+  constexpr std::size_t kAhead = 8;  // hashes are known: prefetch the table slots
+  const std::size_t n = out.inside_hashes.size();
+  for (std::size_t r = 0; r < n; ++r) {
+    if (r + kAhead < n) result_.simplices.prefetch(out.inside_hashes[r + kAhead]);
+    if (result_.simplices.insert(out.inside_keys.data() + r * words, out.inside_hashes[r]).second) {
       const double* p = out.inside_data.data() + r * (d_ + 1);
       result_.points.insert(result_.points.end(), p, p + d_);
       domain_values_.push_back(p[d_]);
     }
+  }
   for (std::size_t r = 0; r * words < out.boundary_keys.size(); ++r)
     if (result_.boundary_simplices.insert(out.boundary_keys.data() + r * words).second) {
       const double* p = out.boundary_points.data() + r * d_;
