@@ -16,6 +16,7 @@
 #include "coxmesh/oracle/expression_function.h"
 #include "coxmesh/oracle/implicit_oracle.h"
 #include "coxmesh/tracing/seeds.h"
+#include "coxmesh/util/parallel_for.h"
 #include "presets.h"
 #include "report.h"
 
@@ -32,7 +33,7 @@ struct TraceCliOptions {
   std::vector<std::string> seeds, domains;
   bool auto_seed = false, json = false, quiet = false, no_output = false;
   std::size_t max_simplices = 20'000'000;
-  int threads = 1;  // parallel tracing evaluates F once per vertex per worker, so 1 by default
+  int threads = 0;  // all hardware threads
   std::string box;
   std::optional<double> domain_ball;
   std::string domain_center, cut;
@@ -207,15 +208,18 @@ void run(TraceCliOptions o) {
   }
 
   const auto t0 = Clock::now();
-  options.threads = o.threads;
+  options.threads = resolve_threads(o.threads);
+  // Several workers share the vertex values (F once per vertex in all); each has its own
+  // functions, since an expression evaluator is not thread-safe.
+  const auto shared = options.threads > 1 ? ImplicitOracle::make_shared_values(t, f, domain) : nullptr;
   bool first_worker = true;
   TraceResult traced = trace_manifold(t, [&]() -> std::unique_ptr<IntersectionOracle> {
     if (first_worker) {  // the main thread's functions; fresh ones for the other workers
       first_worker = false;
-      return std::make_unique<ImplicitOracle>(t, f, domain);
+      return std::make_unique<ImplicitOracle>(t, f, domain, shared);
     }
     auto [fw, dw] = make_problem();
-    return std::make_unique<ImplicitOracle>(t, fw, dw);
+    return std::make_unique<ImplicitOracle>(t, fw, dw, shared);
   }, seeds, options);
   if (traced.simplices.size() == 0)
     throw InputError("no simplex near the " + std::to_string(seeds.size()) +
@@ -227,7 +231,7 @@ void run(TraceCliOptions o) {
 
   if (progress) progress->phase("building the cell complex");
   const auto t1 = Clock::now();
-  const CellComplex cc = build_cell_complex(std::move(traced), o.threads);
+  const CellComplex cc = build_cell_complex(std::move(traced), options.threads);
   const double complex_s = seconds_since(t1);
   if (progress) progress->phase("computing the topology");
   const auto t2 = Clock::now();
@@ -330,7 +334,8 @@ void register_trace(CLI::App& app, int& status) {
                   "3D formats with d != 3: coordinates i,j,k (1-based, default 1,2,3), pca, or a file of 3 rows of d "
                   "numbers");
   cmd->add_option("--threads", o->threads, "worker threads (0: all hardware threads); the result is the same for any number")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1024));
   cmd->add_flag("--no-output", o->no_output, "write no file");
   cmd->add_flag("--json", o->json, "print the summary as JSON (and write a file only with -o)");
   cmd->add_flag("-q,--quiet", o->quiet, "print nothing but errors");

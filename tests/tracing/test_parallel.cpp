@@ -51,6 +51,12 @@ TEST(ParallelTracing, IdenticalForEveryThreadCount) {
       const TraceResult parallel = trace_manifold(
           c.t, [&] { return std::make_unique<ImplicitOracle>(c.t, c.f, c.domain); }, seeds, options);
       expect_identical(sequential, parallel, c.name + ", " + std::to_string(threads) + " threads");
+      // Oracles sharing their vertex values: the same result, and F once per vertex in all.
+      const auto shared = ImplicitOracle::make_shared_values(c.t, c.f, c.domain);
+      const TraceResult sharing = trace_manifold(
+          c.t, [&] { return std::make_unique<ImplicitOracle>(c.t, c.f, c.domain, shared); }, seeds, options);
+      expect_identical(sequential, sharing, c.name + ", " + std::to_string(threads) + " threads sharing values");
+      EXPECT_EQ(sharing.function_evaluations, sequential.function_evaluations) << threads << " threads";
     }
   }
 }
@@ -64,6 +70,10 @@ TEST(ParallelTracing, ErrorsFromWorkersReachTheCaller) {
   options.threads = 2;
   EXPECT_THROW(trace_manifold(t, [&] { return std::make_unique<ImplicitOracle>(t, bad); }, {bad->seed()}, options),
                EvaluationError);
+  const auto shared = ImplicitOracle::make_shared_values(t, bad);
+  EXPECT_THROW(trace_manifold(t, [&] { return std::make_unique<ImplicitOracle>(t, bad, nullptr, shared); }, {bad->seed()}, options),
+               EvaluationError);
+  EXPECT_THROW(ImplicitOracle(t, bad, half_space_domain({1, 0, 0}, 0), shared), InputError);  // 2 values per vertex, not 1
 }
 
 TEST(ParallelCellComplex, IdenticalForEveryThreadCount) {

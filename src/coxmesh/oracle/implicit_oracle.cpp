@@ -1,6 +1,7 @@
 // Spec §3: M(τ)·λ = (1, 0, …, 0)ᵀ with the exact lexicographic rule; D̂ interpolated at the point.
 #include "coxmesh/oracle/implicit_oracle.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -8,8 +9,9 @@
 
 namespace coxmesh {
 
-ImplicitOracle::ImplicitOracle(const Triangulation& triangulation, FunctionPtr f, FunctionPtr domain)
-    : triangulation_(triangulation), f_(std::move(f)), domain_(std::move(domain)), cache_(1) {
+ImplicitOracle::ImplicitOracle(const Triangulation& triangulation, FunctionPtr f, FunctionPtr domain,
+                               std::shared_ptr<SharedVertexValues> shared)
+    : triangulation_(triangulation), f_(std::move(f)), domain_(std::move(domain)), shared_(std::move(shared)), cache_(1) {
   if (!f_) throw InputError("no implicit function given");
   d_ = triangulation_.dimension();
   k_ = f_->codimension();
@@ -20,36 +22,68 @@ ImplicitOracle::ImplicitOracle(const Triangulation& triangulation, FunctionPtr f
   if (domain_ && (domain_->ambient_dimension() != d_ || domain_->codimension() != 1))
     throw InputError("the domain function must map R^" + std::to_string(d_) + " to R");
   stride_ = k_ + (domain_ ? 1 : 0);
-  cache_ = PackedKeyIndex(d_);
   scratch_.resize(stride_ + d_);
+  if (shared_) {
+    if (shared_->dimension() != d_ || shared_->stride() != stride_)
+      throw InputError("the shared vertex values hold " + std::to_string(shared_->stride()) + " values per vertex of R^" +
+                       std::to_string(shared_->dimension()) + ", this oracle needs " + std::to_string(stride_) +
+                       " per vertex of R^" + std::to_string(d_));
+    front_keys_.resize(kFrontSlots * d_);
+    front_values_.resize(kFrontSlots * stride_);
+    front_used_.assign(kFrontSlots, 0);
+  } else {
+    cache_ = PackedKeyIndex(d_);
+  }
 }
 
 const double* ImplicitOracle::values_at(const std::int32_t* v) {
   const auto* key = reinterpret_cast<const std::uint32_t*>(v);
-  std::uint32_t id = PackedKeyIndex::kAbsent;
-  if (cache_enabled_) {
-    const std::uint64_t h = hash_words(key, d_);
-    auto [found, inserted] = cache_.insert(key, h);
-    if (!inserted) return values_.data() + static_cast<std::size_t>(found) * stride_;
-    id = found;
-    values_.resize(values_.size() + stride_);
+  const std::uint64_t h = hash_words(key, d_);
+  if (shared_) {
+    // A small direct-mapped cache of this thread in front of the shared table.
+    const std::size_t slot = h & (kFrontSlots - 1);
+    std::int32_t* front_key = front_keys_.data() + slot * d_;
+    double* front = front_values_.data() + slot * stride_;
+    if (front_used_[slot] && std::equal(v, v + d_, front_key)) return front;
+    front_used_[slot] = 0;
+    shared_->get(v, h, front, [&](double* out) { evaluate(v, out); });
+    for (int i = 0; i < stride_; ++i)
+      if (!std::isfinite(front[i])) throw EvaluationError(not_finite_message(v, i, front[i]));
+    std::copy(v, v + d_, front_key);
+    front_used_[slot] = 1;
+    return front;
   }
-  double* out = id == PackedKeyIndex::kAbsent ? scratch_.data() : values_.data() + static_cast<std::size_t>(id) * stride_;
+  if (!cache_enabled_) {
+    evaluate(v, scratch_.data());
+    return scratch_.data();
+  }
+  auto [found, inserted] = cache_.insert(key, h);
+  if (inserted) {
+    values_.resize(values_.size() + stride_);
+    evaluate(v, values_.data() + static_cast<std::size_t>(found) * stride_);
+  }
+  return values_.data() + static_cast<std::size_t>(found) * stride_;
+}
+
+void ImplicitOracle::evaluate(const std::int32_t* v, double* out) {
   double* x = scratch_.data() + stride_;
   triangulation_.cartesian(v, x);
   f_->evaluate(x, out);
   if (domain_) domain_->evaluate(x, out + k_);
   ++evaluations_;
   for (int i = 0; i < stride_; ++i)
-    if (!std::isfinite(out[i])) {
-      std::ostringstream os;
-      os.precision(17);
-      os << (i < k_ ? "the function" : "the domain function") << " is not finite (" << out[i] << ") at (";
-      for (int j = 0; j < d_; ++j) os << (j ? "," : "") << x[j];
-      os << ")";
-      throw EvaluationError(os.str());
-    }
-  return out;
+    if (!std::isfinite(out[i])) throw EvaluationError(not_finite_message(v, i, out[i]));
+}
+
+std::string ImplicitOracle::not_finite_message(const std::int32_t* v, int i, double value) const {
+  double x[kMaxDimension];
+  triangulation_.cartesian(v, x);
+  std::ostringstream os;
+  os.precision(17);
+  os << (i < k_ ? "the function" : "the domain function") << " is not finite (" << value << ") at (";
+  for (int j = 0; j < d_; ++j) os << (j ? "," : "") << x[j];
+  os << ")";
+  return os.str();
 }
 
 Intersection ImplicitOracle::intersect(const Simplex& tau, double* point) {

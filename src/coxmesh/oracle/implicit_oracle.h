@@ -3,25 +3,39 @@
 #pragma once
 
 #include <array>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "coxmesh/lattice/packed_index.h"
 #include "coxmesh/oracle/implicit_function.h"
 #include "coxmesh/oracle/intersection_oracle.h"
+#include "coxmesh/oracle/shared_vertex_values.h"
 #include "coxmesh/oracle/small_lu.h"
 #include "coxmesh/triangulation/triangulation.h"
 
 namespace coxmesh {
 
 /// The oracle of M = F^{-1}(0) ∩ {D < 0} on a triangulation T. Keeps a cache lattice vertex →
-/// (F, D) values: every lattice vertex is evaluated once. Not thread-safe; one per thread.
+/// (F, D) values: every lattice vertex is evaluated once. Not thread-safe: one per thread. The
+/// oracles of several threads evaluate each vertex once in all when they share a
+/// SharedVertexValues (then F and D are only called under its locks, but from any thread).
 ///
 ///   ImplicitOracle oracle(T, sphere(2, 3, 1.0));
 ///   double p[3];  if (oracle.intersect(tau, p).hit) ...
+///
+///   auto shared = ImplicitOracle::make_shared_values(T, f, domain);   // for a worker pool
+///   auto worker_oracle = std::make_unique<ImplicitOracle>(T, f, domain, shared);
 class ImplicitOracle final : public IntersectionOracle {
  public:
   /// Throws InputError when F, D and T disagree on d, or F has more equations than d.
-  ImplicitOracle(const Triangulation& triangulation, FunctionPtr f, FunctionPtr domain = nullptr);
+  ImplicitOracle(const Triangulation& triangulation, FunctionPtr f, FunctionPtr domain = nullptr,
+                 std::shared_ptr<SharedVertexValues> shared = nullptr);
+  /// A table of vertex values the oracles of (T, f, domain) can share.
+  static std::shared_ptr<SharedVertexValues> make_shared_values(const Triangulation& t, const FunctionPtr& f,
+                                                                const FunctionPtr& domain = nullptr) {
+    return std::make_shared<SharedVertexValues>(t.dimension(), f->codimension() + (domain ? 1 : 0));
+  }
 
   int ambient_dimension() const override { return d_; }
   int codimension() const override { return k_; }
@@ -31,17 +45,24 @@ class ImplicitOracle final : public IntersectionOracle {
   bool pivot_enter(const Simplex& tau) override;
   int pivot_exit(const std::int32_t* v) override;
 
-  /// Switches the per-vertex cache off (every query re-evaluates F): the benchmark's ablation.
+  /// Switches the private per-vertex cache off (every query re-evaluates F): the benchmark's ablation.
   void set_cache_enabled(bool on) { cache_enabled_ = on; }
   std::size_t cache_bytes() const { return cache_.bytes() + values_.capacity() * sizeof(double); }
 
  private:
   const double* values_at(const std::int32_t* v);  // F (and D) at a lattice vertex
+  void evaluate(const std::int32_t* v, double* out);
+  std::string not_finite_message(const std::int32_t* v, int i, double value) const;
 
   Triangulation triangulation_;
   FunctionPtr f_, domain_;
   int d_, k_, stride_;
-  PackedKeyIndex cache_;
+  std::shared_ptr<SharedVertexValues> shared_;
+  static constexpr std::size_t kFrontSlots = 4096;  // with shared_: this thread's recent vertices
+  std::vector<std::int32_t> front_keys_;
+  std::vector<double> front_values_;
+  std::vector<std::uint8_t> front_used_;
+  PackedKeyIndex cache_;  // without shared_: every vertex this oracle met
   std::vector<double> values_;  // stride_ per cached vertex: F values, then D
   std::vector<double> scratch_;
   SmallLu pivot_lu_;                        // M(τ) of the last pivot_enter

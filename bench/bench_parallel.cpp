@@ -1,0 +1,145 @@
+// Multi-core scaling of tracing and cell complex construction (issue 6). For every case: the
+// sequential walk (one oracle, the single-thread implementation) against the parallel one with
+// 1, 2, 4, … threads (one oracle per worker, sharing the vertex values), and the cell complex with 1 and N threads. Wall
+// time, median of `runs`. Also checks that every run gives the same |S| and cell count.
+//
+// Usage: bench_parallel [max-threads = hardware threads] [runs = 3] [case-name-substring]
+// Threads beyond the number of cores only show the overhead; run it on a machine with more cores
+// for the scaling curve (the table says how many cores it had).
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "coxmesh/cell_complex/cell_complex.h"
+#include "coxmesh/oracle/implicit_function.h"
+#include "coxmesh/oracle/implicit_oracle.h"
+#include "coxmesh/tracing/trace_manifold.h"
+
+using namespace coxmesh;
+
+namespace {
+
+struct Case {
+  std::string name;
+  FunctionPtr f, domain;
+  Triangulation t;
+  std::vector<double> seed;
+};
+
+std::vector<Case> make_cases() {
+  const FunctionPtr circle = sphere(1, 2, 1.0);
+  return {
+      {"S^2 in R^3", sphere(2, 3, 1.0), nullptr, Triangulation::coxeter(3).with_longest_edge(0.01).rotated(1), {}},
+      {"torus in R^3", torus(1.0, 0.4), nullptr, Triangulation::coxeter(3).with_longest_edge(0.012).rotated(2), {}},
+      {"S^2 in R^4", sphere(2, 4, 1.0), nullptr, Triangulation::coxeter(4).with_longest_edge(0.03).rotated(3), {}},
+      {"S^3 in R^4", sphere(3, 4, 1.0), nullptr, Triangulation::coxeter(4).with_longest_edge(0.12).rotated(4), {}},
+      {"S^2 in R^5", sphere(2, 5, 1.0), nullptr, Triangulation::coxeter(5).with_longest_edge(0.05).rotated(5), {}},
+      {"S^3 in R^6", sphere(3, 6, 1.0), nullptr, Triangulation::coxeter(6).with_longest_edge(0.3).rotated(6), {}},
+      {"flat torus in R^4", product(circle, circle), nullptr, Triangulation::coxeter(4).with_longest_edge(0.05).rotated(7), {}},
+      {"flat torus in R^4, cut", product(circle, circle), half_space_domain({0.3, -0.2, 0.9, 0.25}, 0.2),
+       Triangulation::coxeter(4).with_longest_edge(0.05).rotated(8), {-1, 0, -1, 0}},
+  };
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+double process_cpu() {
+  timespec ts;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+struct Timing {
+  double trace = 0, complex = 0, trace_cpu = 0, complex_cpu = 0;  // wall and CPU time of all threads
+  std::size_t simplices = 0, cells = 0;
+  std::uint64_t evaluations = 0;
+};
+
+// threads = 0: the sequential overload (one oracle); otherwise the factory overload.
+Timing run(const Case& c, int threads) {
+  Timing r;
+  const std::vector<std::vector<double>> seeds = {c.seed.empty() ? c.f->seed() : c.seed};
+  auto t0 = std::chrono::steady_clock::now();
+  double c0 = process_cpu();
+  TraceResult traced;
+  if (threads == 0) {
+    ImplicitOracle oracle(c.t, c.f, c.domain);
+    traced = trace_manifold(c.t, oracle, seeds);
+  } else {
+    TraceOptions options;
+    options.threads = threads;
+    const auto shared = ImplicitOracle::make_shared_values(c.t, c.f, c.domain);
+    traced = trace_manifold(
+        c.t, [&] { return std::make_unique<ImplicitOracle>(c.t, c.f, c.domain, shared); }, seeds, options);
+  }
+  r.trace = seconds_since(t0);
+  r.trace_cpu = process_cpu() - c0;
+  r.simplices = traced.simplices.size();
+  r.evaluations = traced.function_evaluations;
+  t0 = std::chrono::steady_clock::now();
+  c0 = process_cpu();
+  const CellComplex cc = build_cell_complex(std::move(traced), std::max(threads, 1));
+  r.complex = seconds_since(t0);
+  r.complex_cpu = process_cpu() - c0;
+  for (const auto* levels : {&cc.interior, &cc.boundary})
+    for (const CellLevel& l : *levels) r.cells += l.size();
+  return r;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int max_threads = argc > 1 ? std::max(1, std::atoi(argv[1])) : cores;
+  const int runs = argc > 2 ? std::max(1, std::atoi(argv[2])) : 3;
+  const std::string filter = argc > 3 ? argv[3] : "";
+  std::vector<int> counts = {0};
+  for (int n = 1; n <= max_threads; n *= 2) counts.push_back(n);
+  if (counts.back() != max_threads) counts.push_back(max_threads);
+
+  std::printf("%d hardware threads; wall time, median of %d runs; speedup = sequential time / time\n\n", cores, runs);
+  std::printf("| case | \\|S\\| | cells | threads | trace s | trace speedup | trace CPU s | complex s | complex speedup | complex CPU s | F evaluations |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const Case& c : make_cases()) {
+    if (c.name.find(filter) == std::string::npos) continue;
+    double seq_trace = 0, seq_complex = 0;
+    std::size_t simplices = 0, cells = 0;
+    for (int threads : counts) {
+      std::vector<double> trace, complex, trace_cpu, complex_cpu;
+      Timing last;
+      for (int i = 0; i < runs; ++i) {
+        last = run(c, threads);
+        trace.push_back(last.trace);
+        complex.push_back(last.complex);
+        trace_cpu.push_back(last.trace_cpu);
+        complex_cpu.push_back(last.complex_cpu);
+      }
+      if (threads == 0) {
+        seq_trace = median(trace), seq_complex = median(complex);
+        simplices = last.simplices, cells = last.cells;
+      } else if (last.simplices != simplices || last.cells != cells) {
+        std::fprintf(stderr, "%s: %d threads gave |S| %zu and %zu cells, the sequential walk %zu and %zu\n",
+                     c.name.c_str(), threads, last.simplices, last.cells, simplices, cells);
+        return 1;
+      }
+      const double t = median(trace), x = median(complex);
+      std::printf("| %s | %zu | %zu | %s | %.3f | %.2f | %.3f | %.3f | %.2f | %.3f | %llu |\n", c.name.c_str(), simplices,
+                  cells, threads == 0 ? "sequential" : std::to_string(threads).c_str(), t, seq_trace / t, median(trace_cpu),
+                  x, seq_complex / x, median(complex_cpu), static_cast<unsigned long long>(last.evaluations));
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}
