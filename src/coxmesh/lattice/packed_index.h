@@ -91,8 +91,11 @@ class PackedKeyIndex {
   }
 
  private:
-  bool equal(std::uint32_t id, const std::uint32_t* key) const {
-    return std::memcmp(keys_.data() + static_cast<std::size_t>(id) * words_, key, 4 * static_cast<std::size_t>(words_)) == 0;
+  bool equal(std::uint32_t id, const std::uint32_t* key) const {  // inline: keys are a few words
+    const std::uint32_t* a = keys_.data() + static_cast<std::size_t>(id) * words_;
+    std::uint32_t diff = 0;
+    for (int i = 0; i < words_; ++i) diff |= a[i] ^ key[i];
+    return diff == 0;
   }
   void rehash(std::size_t capacity) {
     slots_.assign(capacity, 0);

@@ -28,41 +28,47 @@ ImplicitOracle::ImplicitOracle(const Triangulation& triangulation, FunctionPtr f
       throw InputError("the shared vertex values hold " + std::to_string(shared_->stride()) + " values per vertex of R^" +
                        std::to_string(shared_->dimension()) + ", this oracle needs " + std::to_string(stride_) +
                        " per vertex of R^" + std::to_string(d_));
-    front_keys_.resize(kFrontSlots * d_);
-    front_values_.resize(kFrontSlots * stride_);
-    front_used_.assign(kFrontSlots, 0);
   } else {
     cache_ = PackedKeyIndex(d_);
   }
+  front_keys_.resize(kFrontSlots * d_);
+  front_values_.resize(kFrontSlots * stride_);
+  front_used_.assign(kFrontSlots, 0);
 }
 
 const double* ImplicitOracle::values_at(const std::int32_t* v) {
-  const auto* key = reinterpret_cast<const std::uint32_t*>(v);
-  const std::uint64_t h = hash_words(key, d_);
-  if (shared_) {
-    // A small direct-mapped cache of this thread in front of the shared table.
-    const std::size_t slot = h & (kFrontSlots - 1);
-    std::int32_t* front_key = front_keys_.data() + slot * d_;
-    double* front = front_values_.data() + slot * stride_;
-    if (front_used_[slot] && std::equal(v, v + d_, front_key)) return front;
-    front_used_[slot] = 0;
-    shared_->get(v, h, front, [&](double* out) { evaluate(v, out); });
-    for (int i = 0; i < stride_; ++i)
-      if (!std::isfinite(front[i])) throw EvaluationError(not_finite_message(v, i, front[i]));
-    std::copy(v, v + d_, front_key);
-    front_used_[slot] = 1;
-    return front;
-  }
   if (!cache_enabled_) {
     evaluate(v, scratch_.data());
     return scratch_.data();
   }
-  auto [found, inserted] = cache_.insert(key, h);
-  if (inserted) {
-    values_.resize(values_.size() + stride_);
-    evaluate(v, values_.data() + static_cast<std::size_t>(found) * stride_);
+  const auto* key = reinterpret_cast<const std::uint32_t*>(v);
+  const std::uint64_t h = hash_words(key, d_);
+  // The walk meets each vertex many times within a short while: a small direct-mapped cache of
+  // recent vertices (a few cache lines per probe) answers most lookups before the big table.
+  const std::size_t slot = h & (kFrontSlots - 1);
+  std::int32_t* front_key = front_keys_.data() + slot * d_;
+  double* front = front_values_.data() + slot * stride_;
+  if (front_used_[slot] && std::equal(v, v + d_, front_key)) return front;
+  front_used_[slot] = 0;
+  if (shared_) {
+    shared_->get(v, h, front, [&](double* out) { evaluate(v, out); });
+    for (int i = 0; i < stride_; ++i)  // NaN stored by a worker whose evaluation failed
+      if (!std::isfinite(front[i])) throw EvaluationError(not_finite_message(v, i, front[i]));
+  } else {
+    auto [found, inserted] = cache_.insert(key, h);
+    double* stored;
+    if (inserted) {
+      values_.resize(values_.size() + stride_);
+      stored = values_.data() + static_cast<std::size_t>(found) * stride_;
+      evaluate(v, stored);
+    } else {
+      stored = values_.data() + static_cast<std::size_t>(found) * stride_;
+    }
+    std::copy(stored, stored + stride_, front);
   }
-  return values_.data() + static_cast<std::size_t>(found) * stride_;
+  std::copy(v, v + d_, front_key);
+  front_used_[slot] = 1;
+  return front;
 }
 
 void ImplicitOracle::evaluate(const std::int32_t* v, double* out) {
@@ -125,6 +131,10 @@ bool ImplicitOracle::pivot_enter(const Simplex& tau) {
     m[j * n] = 1.0;
     for (int i = 0; i < k_; ++i) m[j * n + 1 + i] = val[i];
   }
+  if (n == 2) {  // k = 1: signs decide (see pivot_exit)
+    pivot_lambda_[0] = m[1], pivot_lambda_[1] = m[3];
+    return true;
+  }
   if (!pivot_lu_.factor(n, m)) return false;
   pivot_lu_.solve_unit(0, pivot_lambda_.data());
   return true;
@@ -133,6 +143,9 @@ bool ImplicitOracle::pivot_enter(const Simplex& tau) {
 int ImplicitOracle::pivot_exit(const std::int32_t* v) {
   const int n = k_ + 1;
   const double* val = values_at(v);
+  // k = 1, exact: an edge is transverse iff exactly one end has F > 0 (lexicographic_solve), so
+  // the other transverse edge of the triangle joins v to the end of τ whose sign differs from v's.
+  if (n == 2) return (val[0] > 0) == (pivot_lambda_[0] > 0) ? 0 : 1;
   double a[SmallLu::kMaxN], w[SmallLu::kMaxN];
   a[0] = 1.0;
   for (int i = 0; i < k_; ++i) a[1 + i] = val[i];

@@ -47,7 +47,10 @@ class ImplicitOracle final : public IntersectionOracle {
 
   /// Switches the private per-vertex cache off (every query re-evaluates F): the benchmark's ablation.
   void set_cache_enabled(bool on) { cache_enabled_ = on; }
-  std::size_t cache_bytes() const { return cache_.bytes() + values_.capacity() * sizeof(double); }
+  std::size_t cache_bytes() const {
+    return cache_.bytes() + values_.capacity() * sizeof(double) + front_keys_.capacity() * sizeof(std::int32_t) +
+           front_values_.capacity() * sizeof(double) + front_used_.capacity();
+  }
 
  private:
   const double* values_at(const std::int32_t* v);  // F (and D) at a lattice vertex
@@ -58,7 +61,7 @@ class ImplicitOracle final : public IntersectionOracle {
   FunctionPtr f_, domain_;
   int d_, k_, stride_;
   std::shared_ptr<SharedVertexValues> shared_;
-  static constexpr std::size_t kFrontSlots = 4096;  // with shared_: this thread's recent vertices
+  static constexpr std::size_t kFrontSlots = 2048;  // recent vertices, direct-mapped by hash
   std::vector<std::int32_t> front_keys_;
   std::vector<double> front_values_;
   std::vector<std::uint8_t> front_used_;
@@ -66,7 +69,7 @@ class ImplicitOracle final : public IntersectionOracle {
   std::vector<double> values_;  // stride_ per cached vertex: F values, then D
   std::vector<double> scratch_;
   SmallLu pivot_lu_;                        // M(τ) of the last pivot_enter
-  std::array<double, SmallLu::kMaxN> pivot_lambda_;  // its barycentric solution
+  std::array<double, SmallLu::kMaxN> pivot_lambda_;  // its barycentric solution (k = 1: F at τ's ends)
   std::uint64_t evaluations_ = 0;
   bool cache_enabled_ = true;
 };

@@ -39,27 +39,41 @@ enum class Kind : std::uint8_t {
 struct Found {
   Kind kind;
   std::uint32_t index;  // where the walk keeps the simplex (S id, or its point and D̂)
+  int facet = -1;       // which facet of μ it is (the index of the vertex of μ it lacks)
 };
+
+// The lattice vertex w of a cofacet μ of τ not in τ, as 2 bits per coordinate of w − y(τ) ∈ {−1, 0, 1}
+// (w and y(τ) are vertices of one simplex): with τ, it names μ exactly in 62 bits.
+constexpr std::uint64_t kNoCofacet = ~std::uint64_t{0};  // "11" never occurs as a pair of bits
+std::uint64_t cofacet_code(const std::int32_t* w, const std::uint32_t* tau_key, int d) {
+  std::uint64_t code = 0;
+  for (int i = 0; i < d; ++i)
+    code |= static_cast<std::uint64_t>(w[i] - static_cast<std::int32_t>(tau_key[i]) + 1) << (2 * i);
+  return code;
+}
 
 // The other transverse facet of a cofacet μ of τ ∈ S: M̂ ∩ μ is a segment between exactly two
 // transverse facets of μ, τ and this one (spec §2.2). The oracle's door-in/door-out guess is
 // tested first; without a guess, or when it is wrong, every facet is. `test` classifies a facet.
+// μ is skipped (miss) when it is the cofacet τ was discovered through (`arrival`, a cofacet_code):
+// its other transverse facet is τ's discoverer, already in S.
 template <class Test>
-Found other_transverse_facet(IntersectionOracle& oracle, bool pivots, const Simplex& tau, const Simplex& mu,
-                             Test&& test) {
+Found other_transverse_facet(IntersectionOracle& oracle, bool pivots, const Simplex& tau, const std::uint32_t* tau_key,
+                             std::uint64_t arrival, const Simplex& mu, Test&& test) {
   const int entry = extra_vertex_index(tau, mu);  // μ without its vertex `entry` is τ
+  std::int32_t v[kMaxDimension];
+  mu.vertex(entry, v);
+  if (arrival != kNoCofacet && cofacet_code(v, tau_key, tau.d) == arrival) return {Kind::miss, 0};
   int guess = -1;
   if (pivots) {
-    std::int32_t v[kMaxDimension];
-    mu.vertex(entry, v);
     if (const int g = oracle.pivot_exit(v); g >= 0) {
       guess = g < entry ? g : g + 1;
-      if (const Found f = test(facet_without(mu, guess)); f.kind != Kind::miss) return f;
+      if (Found f = test(facet_without(mu, guess)); f.kind != Kind::miss) return f.facet = guess, f;
     }
   }
   for (int j = 0; j <= mu.k; ++j)
     if (j != entry && j != guess)
-      if (const Found f = test(facet_without(mu, j)); f.kind != Kind::miss) return f;
+      if (Found f = test(facet_without(mu, j)); f.kind != Kind::miss) return f.facet = j, f;
   return {Kind::miss, 0};
 }
 
@@ -100,10 +114,11 @@ class Tracer {
   // D̂) and boundary simplices (key, point). Merged in chunk order, so the result is deterministic.
   struct ChunkOutput {
     std::vector<std::uint32_t> inside_keys, boundary_keys;
-    std::vector<std::uint64_t> inside_hashes;
+    std::vector<std::uint64_t> inside_hashes, inside_arrivals;
     std::vector<double> inside_data, boundary_points;
     void clear() {
-      inside_keys.clear(), boundary_keys.clear(), inside_hashes.clear(), inside_data.clear(), boundary_points.clear();
+      inside_keys.clear(), boundary_keys.clear(), inside_hashes.clear(), inside_arrivals.clear(), inside_data.clear(),
+          boundary_points.clear();
     }
   };
   // A worker's oracle and its memory of the simplices it tested in the current level that were not
@@ -126,6 +141,7 @@ class Tracer {
   const int d_, k_;
   TraceResult result_;
   std::vector<double> domain_values_;  // D̂ at each point of S
+  std::vector<std::uint64_t> arrivals_;  // per simplex of S: the cofacet it was discovered through
   PackedKeyIndex others_;
   std::vector<std::uint32_t> other_payload_;  // kMiss, kOutsideBox or index into outside_
   std::vector<double> outside_;               // (d + 1) per transverse simplex outside: point, D̂
@@ -159,6 +175,7 @@ Found Tracer::classify(const Simplex& tau) {
       const std::uint32_t id = result_.simplices.insert(key, h).first;
       result_.points.insert(result_.points.end(), point_.begin(), point_.end());
       domain_values_.push_back(x.domain);
+      arrivals_.push_back(kNoCofacet);  // set by the walk
       return {Kind::inside, id};
     } else {
       payload = static_cast<std::uint32_t>(outside_.size());
@@ -200,14 +217,22 @@ void Tracer::walk() {
   if (workers_.size() > 1) return walk_parallel();
   Simplex tau, mu;
   CofaceEnumerator cofacets;
+  std::int32_t v[kMaxDimension];
   for (; head_ < result_.simplices.size(); ++head_) {
     if (head_ >= level_end_ && !start_level()) return;
     tau = result_.simplices.simplex(head_, d_);
     const bool pivots = oracle_.pivot_enter(tau);
     cofacets.reset(tau, k_ + 1);
     while (cofacets.next(mu)) {
-      const Found f = other_transverse_facet(oracle_, pivots, tau, mu, [this](const Simplex& s) { return classify(s); });
+      const std::uint32_t known = result_.simplices.size();
+      // (τ's key is fetched per cofacet: classify appends to S, which may move the keys)
+      const Found f = other_transverse_facet(oracle_, pivots, tau, result_.simplices.key(head_), arrivals_[head_], mu,
+                                             [this](const Simplex& s) { return classify(s); });
       if (f.kind == Kind::outside) add_boundary(mu, head_, outside_.data() + f.index);
+      if (f.kind == Kind::inside && f.index >= known) {  // discovered now, through μ
+        mu.vertex(f.facet, v);
+        arrivals_[f.index] = cofacet_code(v, result_.simplices.key(f.index), d_);
+      }
     }
   }
 }
@@ -255,6 +280,7 @@ Found Tracer::classify_in_level(const Simplex& tau, Worker& worker, ChunkOutput&
       if (x.domain < 0) {
         out.inside_keys.insert(out.inside_keys.end(), key, key + words);
         out.inside_hashes.push_back(h);
+        out.inside_arrivals.push_back(kNoCofacet);  // set by process_chunk
         out.inside_data.insert(out.inside_data.end(), found, found + d_ + 1);
       }
     }
@@ -271,13 +297,20 @@ void Tracer::process_chunk(std::uint32_t begin, std::uint32_t end, Worker& worke
   Simplex tau, mu;
   CofaceEnumerator cofacets;
   std::uint32_t mu_key[packed_words(kMaxDimension)];
+  std::int32_t v[kMaxDimension];
   for (std::uint32_t id = begin; id < end; ++id) {
-    tau = result_.simplices.simplex(id, d_);
+    const std::uint32_t* tau_key = result_.simplices.key(id);
+    tau = unpack(tau_key, d_);
     const bool pivots = worker.oracle->pivot_enter(tau);
     cofacets.reset(tau, k_ + 1);
     while (cofacets.next(mu)) {
-      const Found f = other_transverse_facet(*worker.oracle, pivots, tau, mu,
+      const std::size_t known = out.inside_arrivals.size();
+      const Found f = other_transverse_facet(*worker.oracle, pivots, tau, tau_key, arrivals_[id], mu,
                                              [&](const Simplex& s) { return classify_in_level(s, worker, out); });
+      if (f.kind == Kind::inside && out.inside_arrivals.size() > known) {  // first found now, through μ
+        mu.vertex(f.facet, v);
+        out.inside_arrivals.back() = cofacet_code(v, out.inside_keys.data() + out.inside_keys.size() - words, d_);
+      }
       if (f.kind != Kind::outside) continue;
       // μ crosses the boundary (see add_boundary)
       const double* q = worker.data.data() + f.index;
@@ -300,6 +333,7 @@ void Tracer::merge(const ChunkOutput& out) {
       const double* p = out.inside_data.data() + r * (d_ + 1);
       result_.points.insert(result_.points.end(), p, p + d_);
       domain_values_.push_back(p[d_]);
+      arrivals_.push_back(out.inside_arrivals[r]);
     }
   }
   for (std::size_t r = 0; r * words < out.boundary_keys.size(); ++r)
