@@ -48,7 +48,11 @@ const double* ImplicitOracle::values_at(const std::int32_t* v) {
   const std::size_t slot = h & (kFrontSlots - 1);
   std::int32_t* front_key = front_keys_.data() + slot * d_;
   double* front = front_values_.data() + slot * stride_;
-  if (front_used_[slot] && std::equal(v, v + d_, front_key)) return front;
+  if (front_used_[slot]) {
+    std::int32_t diff = 0;  // (std::equal would call memcmp for a few ints)
+    for (int i = 0; i < d_; ++i) diff |= v[i] ^ front_key[i];
+    if (diff == 0) return front;
+  }
   front_used_[slot] = 0;
   if (shared_) {
     shared_->get(v, h, front, [&](double* out) { evaluate(v, out); });
