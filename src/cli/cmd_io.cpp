@@ -54,7 +54,6 @@ void check(const CheckOptions& o) {
     j["complete"] = file.info.complete;
     if (!file.info.message.empty()) j["message"] = file.info.message;
     j["function_evaluations"] = file.info.function_evaluations;
-    j["oracle_calls"] = file.info.oracle_calls;
     j["timings"] = {{"read_seconds", read_s}, {"topology_seconds", topo_s}};
     j["peak_memory_bytes"] = peak_memory_bytes();
     std::cout << j.dump(2) << "\n";

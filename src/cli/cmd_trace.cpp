@@ -254,7 +254,6 @@ void run(TraceCliOptions o) {
       for (int c = 0; c < d; ++c) wo.native.matrix.push_back(t.matrix()(r, c));
     wo.native.offset.assign(t.offset().data(), t.offset().data() + d);
     wo.native.function_evaluations = evaluations;
-    wo.native.oracle_calls = oracle_calls;
     const auto t3 = Clock::now();
     written = write_mesh(output, format, cc, wo);
     write_s = seconds_since(t3);

@@ -216,6 +216,20 @@ fails_with "unparsable expression shows the position" "at position 5" "$bin" tra
 fails_with "missing parenthesis" "marked:" "$bin" trace --function "sin(x+y" -o keep.vtu
 fails_with "unknown variable" "unknown variable 'foo'" "$bin" trace --function "x^2+foo" -o keep.vtu
 fails_with "too many equations" "fewer equations than the dimension" "$bin" trace --function "x; y; z" -o keep.vtu
+# ---- Any number of threads writes the same bytes (issue 6) ----
+same_files() {  # same_files NAME EXT TRACE-ARGS...: files for 1, 2, 3 and 4 threads are identical
+  local name=$1 ext=$2; shift 2
+  for t in 1 2 3 4; do "$bin" trace "$@" --threads "$t" -q -o "threads$t.$ext"; done
+  local same=yes
+  for t in 2 3 4; do cmp -s threads1."$ext" threads"$t"."$ext" || same=no; done
+  check "$name: identical $ext files for 1-4 threads" "yes" "$same"
+}
+same_files "torus" cxm --preset torus --edge-length 0.05
+same_files "torus" vtu --preset torus --edge-length 0.05
+same_files "S^3 in R^5, cut" cxm --preset sphere --m 3 --dim 5 --edge-length 0.5 --cut 1,1,0,0,0,0.3 --seed -1,0,0,0,0
+same_files "flat torus, cut" mesh --preset flat-torus --cut 1,1,0,0,0.5 --seed -1,0,1,0 --edge-length 0.1
+same_files "function, automatic seeds" ply --function "x^4+y^4+z^4-1" --domain "z-0.2" --edge-length 0.05
+
 fails_with "domain with two equations" "2 expressions" "$bin" trace --function "x^2+y^2+z^2-1" --domain "x; y" -o keep.vtu
 fails_with "domain beyond d" "beyond the dimension d = 3" "$bin" trace --function "x^2+y^2+z^2-1" --domain "x4" -o keep.vtu
 fails_with "preset parameter with --function" "does not apply to --function" "$bin" trace --function "x^2+y^2+z^2-1" --radius 2

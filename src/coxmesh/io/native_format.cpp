@@ -77,8 +77,7 @@ void write_native(std::ostream& os, const CellComplex& cc, const NativeInfo& inf
                {"message", info.message},
                {"matrix", info.matrix},
                {"offset", info.offset},
-               {"function_evaluations", info.function_evaluations},
-               {"oracle_calls", info.oracle_calls}};
+               {"function_evaluations", info.function_evaluations}};
   std::string line = h.dump();
   line.append((8 - (line.size() + 1) % 8) % 8, ' ');
   line += '\n';
@@ -157,7 +156,6 @@ NativeFile read_native(std::istream& in, const std::string& name) {
       out.info.matrix = i.value("matrix", std::vector<double>{});
       out.info.offset = i.value("offset", std::vector<double>{});
       out.info.function_evaluations = i.value("function_evaluations", std::uint64_t{0});
-      out.info.oracle_calls = i.value("oracle_calls", std::uint64_t{0});
     }
   } catch (const nlohmann::json::exception& e) {
     r.fail(std::string("bad header: ") + e.what());

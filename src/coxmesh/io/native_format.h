@@ -36,7 +36,7 @@ struct NativeInfo {
   bool complete = true;                 ///< false when a limit stopped the trace
   std::string message;                  ///< why it stopped (empty when complete)
   std::vector<double> matrix, offset;   ///< the ambient triangulation x = Λ·y + b: Λ (d × d, row-major) and b
-  std::uint64_t function_evaluations = 0, oracle_calls = 0;
+  std::uint64_t function_evaluations = 0;  ///< (oracle calls are not stored: they vary with threads)
 };
 
 struct NativeFile {
