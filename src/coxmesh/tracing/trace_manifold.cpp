@@ -1,6 +1,7 @@
 // Thesis §4.3; spec §2.2 (tracing) and §2.3 (boundary). The one hot loop of coxmesh.
 #include "coxmesh/tracing/trace_manifold.h"
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cmath>
@@ -238,17 +239,19 @@ void Tracer::walk() {
 }
 
 void Tracer::walk_parallel() {
-  constexpr std::uint32_t kChunk = 64;
   while (head_ < result_.simplices.size()) {
     if (!start_level()) return;
     const std::uint32_t begin = head_, end = level_end_;
-    const std::size_t n = (end - begin + kChunk - 1) / kChunk;
+    // About 8 chunks per worker balance the load; larger chunks keep neighbouring simplices (which
+    // share vertices and candidates) with one worker. The result does not depend on the chunking.
+    const std::uint32_t chunk = std::clamp<std::uint32_t>((end - begin) / (8 * workers_.size()), 32, 4096);
+    const std::size_t n = (end - begin + chunk - 1) / chunk;
     if (chunks_.size() < n) chunks_.resize(n);
     for (Worker& w : workers_) w.tested.clear(), w.payload.clear(), w.data.clear();
     parallel_for(n, static_cast<int>(workers_.size()), [&](std::size_t c, int worker) {
       chunks_[c].clear();
-      const std::uint32_t a = begin + static_cast<std::uint32_t>(c) * kChunk;
-      process_chunk(a, std::min(end, a + kChunk), workers_[worker], chunks_[c]);
+      const std::uint32_t a = begin + static_cast<std::uint32_t>(c) * chunk;
+      process_chunk(a, std::min(end, a + chunk), workers_[worker], chunks_[c]);
     });
     for (std::size_t c = 0; c < n; ++c) merge(chunks_[c]);
     if (box_reached_.load()) result_.status = TraceStatus::box_reached;
