@@ -61,7 +61,7 @@ class ImplicitOracle final : public IntersectionOracle {
   FunctionPtr f_, domain_;
   int d_, k_, stride_;
   std::shared_ptr<SharedVertexValues> shared_;
-  static constexpr std::size_t kFrontSlots = 2048;  // recent vertices, direct-mapped by hash
+  static constexpr std::size_t kFrontSlots = 1 << 14;  // recent vertices, direct-mapped by hash
   std::vector<std::int32_t> front_keys_;
   std::vector<double> front_values_;
   std::vector<std::uint8_t> front_used_;
