@@ -37,6 +37,26 @@ class PackedKeyIndex {
   }
   std::uint32_t find(const std::uint32_t* key) const { return find(key, hash_words(key, words_)); }
 
+  /// find() that also reports where an absent key would go, for insert_at().
+  std::uint32_t find(const std::uint32_t* key, std::uint64_t hash, std::size_t& slot) const {
+    const std::uint32_t tag = static_cast<std::uint32_t>(hash >> 32);
+    for (slot = hash & mask_;; slot = (slot + 1) & mask_) {
+      const std::uint64_t entry = slots_[slot];
+      if (entry == 0) return kAbsent;
+      if (static_cast<std::uint32_t>(entry >> 32) == tag && equal(static_cast<std::uint32_t>(entry) - 1, key))
+        return static_cast<std::uint32_t>(entry) - 1;
+    }
+  }
+  /// Inserts an absent key at the slot find() reported, with no insert in between; returns its id.
+  std::uint32_t insert_at(std::size_t slot, const std::uint32_t* key, std::uint64_t hash) {
+    if (size_ + 1 >= kAbsent) throw InputError("more than 2^32 - 2 entries in one index");
+    const std::uint32_t id = size_++;
+    keys_.insert(keys_.end(), key, key + words_);
+    slots_[slot] = (hash >> 32 << 32) | (id + 1);
+    if (2 * static_cast<std::size_t>(size_) > slots_.size()) rehash(2 * slots_.size());  // load ≤ 1/2
+    return id;
+  }
+
   /// {id, true} if the key was inserted, {existing id, false} if it was there.
   std::pair<std::uint32_t, bool> insert(const std::uint32_t* key, std::uint64_t hash) {
     const std::uint32_t tag = static_cast<std::uint32_t>(hash >> 32);
@@ -47,12 +67,7 @@ class PackedKeyIndex {
       if (static_cast<std::uint32_t>(slot >> 32) == tag && equal(static_cast<std::uint32_t>(slot) - 1, key))
         return {static_cast<std::uint32_t>(slot) - 1, false};
     }
-    if (size_ + 1 >= kAbsent) throw InputError("more than 2^32 - 2 entries in one index");
-    const std::uint32_t id = size_++;
-    keys_.insert(keys_.end(), key, key + words_);
-    slots_[s] = (static_cast<std::uint64_t>(tag) << 32) | (id + 1);
-    if (2 * static_cast<std::size_t>(size_) > slots_.size()) rehash(2 * slots_.size());  // load ≤ 1/2
-    return {id, true};
+    return {insert_at(s, key, hash), true};
   }
   std::pair<std::uint32_t, bool> insert(const std::uint32_t* key) { return insert(key, hash_words(key, words_)); }
 

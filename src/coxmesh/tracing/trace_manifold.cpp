@@ -159,7 +159,8 @@ Found Tracer::classify(const Simplex& tau) {
   std::uint32_t key[packed_words(kMaxDimension)];
   pack(tau, key);
   const std::uint64_t h = hash_words(key, packed_words(d_));
-  if (std::uint32_t id = result_.simplices.find(key, h); id != PackedKeyIndex::kAbsent) return {Kind::inside, id};
+  std::size_t slot;  // where τ goes in S if it is new and inside
+  if (std::uint32_t id = result_.simplices.find(key, h, slot); id != PackedKeyIndex::kAbsent) return {Kind::inside, id};
   if (std::uint32_t id = others_.find(key, h); id != PackedKeyIndex::kAbsent) {
     const std::uint32_t p = other_payload_[id];
     return p == kMiss ? Found{Kind::miss, 0} : p == kOutsideBox ? Found{Kind::clipped, 0} : Found{Kind::outside, p};
@@ -173,7 +174,7 @@ Found Tracer::classify(const Simplex& tau) {
       payload = kOutsideBox;
       result_.status = TraceStatus::box_reached;
     } else if (x.domain < 0) {
-      const std::uint32_t id = result_.simplices.insert(key, h).first;
+      const std::uint32_t id = result_.simplices.insert_at(slot, key, h);
       result_.points.insert(result_.points.end(), point_.begin(), point_.end());
       domain_values_.push_back(x.domain);
       arrivals_.push_back(kNoCofacet);  // set by the walk
