@@ -68,16 +68,21 @@ struct SeedError : std::runtime_error {
 TraceResult trace_manifold(const Triangulation& triangulation, IntersectionOracle& oracle,
                            const std::vector<std::vector<double>>& seeds, const TraceOptions& options = {});
 
-/// Makes one oracle per worker thread (oracles cache and are not thread-safe; the functions they
-/// share must be safe to evaluate concurrently, as the built-ins are).
+/// Makes one oracle per worker thread, called from the calling thread before the walk. Oracles
+/// cache and are not thread-safe; a function object shared by several oracles must be safe to
+/// evaluate concurrently (the built-ins are; an ExpressionFunction is not: make one per worker).
+/// To evaluate F once per lattice vertex in all, build the oracles over one SharedVertexValues:
+///
+///   auto shared = ImplicitOracle::make_shared_values(T, f);
+///   trace_manifold(T, [&] { return std::make_unique<ImplicitOracle>(T, f, nullptr, shared); }, seeds, options);
 using OracleFactory = std::function<std::unique_ptr<IntersectionOracle>()>;
 
 /// Multi-threaded tracing with options.threads workers: level-synchronous breadth-first search.
-/// Each level's simplices are processed in parallel chunks (lookups in S, a sharded table of tested
-/// simplices, per-worker oracles and buffers; no global lock), then the chunks' discoveries are
-/// merged in chunk order, so S, S_∂ and their ids are identical for 1, 2, … N threads and equal to
-/// the single-oracle overload's. Function evaluations are counted over all workers (each worker
-/// caches its own lattice vertices).
+/// Each level's simplices are processed in chunks handed out dynamically; a worker reads S (frozen
+/// during the level), remembers what it tested itself and writes discoveries to its chunk's buffer
+/// (no lock at all in the walk); the buffers are merged in chunk order, so S, S_∂, their ids and
+/// points are identical for 1, 2, … N threads and equal to the single-oracle overload's. With one
+/// thread it is the single-oracle walk. function_evaluations sums the workers' oracles.
 TraceResult trace_manifold(const Triangulation& triangulation, const OracleFactory& make_oracle,
                            const std::vector<std::vector<double>>& seeds, const TraceOptions& options = {});
 
