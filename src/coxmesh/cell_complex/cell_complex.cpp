@@ -42,7 +42,7 @@ CellLevel next_level(const CellLevel& prev, int d, int l) {
 // The same level with `workers` threads: batches of cells have their cofaces enumerated, packed
 // and hashed in parallel, then numbered in cell order (hashes known ahead, so the table slots are
 // prefetched). Batches bound the extra memory.
-CellLevel next_level_parallel(const CellLevel& prev, int d, int l, int workers) {
+CellLevel next_level_parallel(const CellLevel& prev, int d, int l, WorkerPool& pool) {
   constexpr std::uint32_t kChunk = 256, kChunksPerBatch = 64;
   const int words = packed_words(d);
   struct Chunk {
@@ -57,7 +57,7 @@ CellLevel next_level_parallel(const CellLevel& prev, int d, int l, int workers) 
   for (std::uint32_t first = 0; first < prev.size(); first += kChunk * kChunksPerBatch) {
     const std::uint32_t last = std::min<std::uint64_t>(prev.size(), std::uint64_t{first} + kChunk * kChunksPerBatch);
     const std::size_t n = (last - first + kChunk - 1) / kChunk;
-    parallel_for(n, workers, [&](std::size_t t, int) {
+    pool.run(n, [&](std::size_t t, int) {
       Chunk& out = chunks[t];
       out.keys.clear(), out.facets.clear(), out.hashes.clear();
       CofaceEnumerator cofaces;
@@ -88,8 +88,8 @@ CellLevel next_level_parallel(const CellLevel& prev, int d, int l, int workers) 
   return level;
 }
 
-CellLevel make_level(const CellLevel& prev, int d, int l, int workers) {
-  return workers > 1 ? next_level_parallel(prev, d, l, workers) : next_level(prev, d, l);
+CellLevel make_level(const CellLevel& prev, int d, int l, WorkerPool* pool) {
+  return pool ? next_level_parallel(prev, d, l, *pool) : next_level(prev, d, l);
 }
 
 }  // namespace
@@ -104,6 +104,7 @@ std::size_t CellComplex::bytes() const {
 
 CellComplex build_cell_complex(TraceResult&& trace, int threads) {
   const int workers = resolve_threads(threads);
+  const std::unique_ptr<WorkerPool> pool = workers > 1 ? std::make_unique<WorkerPool>(workers) : nullptr;
   CellComplex cc;
   const int d = trace.ambient_dimension, k = trace.codimension, m = d - k;
   cc.ambient_dimension = d;
@@ -120,8 +121,8 @@ CellComplex build_cell_complex(TraceResult&& trace, int threads) {
     cc.boundary_vertices = std::move(trace.boundary_points);
   }
   for (int j = 1; j <= m; ++j) {
-    cc.interior.push_back(make_level(cc.interior[j - 1], d, k + j, workers));
-    if (has_boundary && j <= m - 1) cc.boundary.push_back(make_level(cc.boundary[j - 1], d, k + 1 + j, workers));
+    cc.interior.push_back(make_level(cc.interior[j - 1], d, k + j, pool.get()));
+    if (has_boundary && j <= m - 1) cc.boundary.push_back(make_level(cc.boundary[j - 1], d, k + 1 + j, pool.get()));
   }
   if (!has_boundary) cc.boundary.resize(std::max(m, 0));  // empty levels, uniform shape
   if (has_boundary)

@@ -2,9 +2,38 @@
 #include "coxmesh/lattice/cofaces.h"
 
 #include <bit>
+#include <cstddef>
+#include <cstring>
 #include <string>
 
 namespace coxmesh {
+
+namespace {
+// The current cofacet is only read and written in the same ten 16-byte pieces, so that every load
+// of it is served by a single earlier store (store-to-load forwarding): a narrow store followed by
+// a wider load of the same bytes would stall until the store reaches the cache, on every cofacet.
+using Piece = std::uint32_t __attribute__((vector_size(16)));
+constexpr int kPieces = sizeof(Simplex) / sizeof(Piece);
+static_assert(sizeof(Simplex) % sizeof(Piece) == 0 && offsetof(Simplex, y) == 0);
+constexpr int kBlockOffset = offsetof(Simplex, block);
+
+Piece load_piece(const Simplex& s, int p) {
+  Piece v;
+  std::memcpy(&v, reinterpret_cast<const unsigned char*>(&s) + sizeof(Piece) * p, sizeof(Piece));
+  return v;
+}
+void store_piece(Simplex& s, int p, Piece v) {
+  std::memcpy(reinterpret_cast<unsigned char*>(&s) + sizeof(Piece) * p, &v, sizeof(Piece));
+}
+void copy_pieces(Simplex& dst, const Simplex& src) {
+  for (int p = 0; p < kPieces; ++p) store_piece(dst, p, load_piece(src, p));
+}
+// s's 4-byte word w ^= v.
+void xor_word(Simplex& s, int w, std::uint32_t v) {
+  static constexpr Piece kLane[4] = {{~0u, 0, 0, 0}, {0, ~0u, 0, 0}, {0, 0, ~0u, 0}, {0, 0, 0, ~0u}};
+  store_piece(s, w >> 2, load_piece(s, w >> 2) ^ (Piece{v, v, v, v} & kLane[w & 3]));
+}
+}  // namespace
 
 void CofaceEnumerator::reset(const Simplex& tau, int l) {
   if (l < tau.k || l > tau.d)
@@ -50,10 +79,9 @@ bool CofaceEnumerator::start_split() {
   const int theta = half_ == 0 ? b : b < k ? b + 1 : 0;
   first_ = start_[b];
   steps_ = (std::uint32_t{1} << (n - 1)) - 1;
-  step_ = gray_ = 0;
-  s_label_ = static_cast<std::uint8_t>(theta);
-  t_label_ = static_cast<std::uint8_t>(b + (b >= theta));
-  s_shift_ = theta == 0 && half_ == 1;
+  step_ = 0;
+  label_toggle_ = static_cast<std::uint8_t>(theta ^ (b + (b >= theta)));
+  y_toggle_ = theta == 0 && half_ == 1 ? ~0u : 0u;
   cur_ = tau_;
   cur_.k = static_cast<std::uint8_t>(k + 1);
   for (int i = 0; i <= d; ++i) cur_.block[i] = static_cast<std::uint8_t>(tau_.block[i] + (tau_.block[i] >= theta));
@@ -184,14 +212,14 @@ bool CofaceEnumerator::next(Simplex& out) {
     if (l_ != tau_.k + 1) return next_general(out);
     if (!start_split()) return false;
   }
-  // Gray code: one element of the split block crosses to the other sub-block.
-  const int bit = std::countr_zero(++step_);
-  gray_ ^= std::uint32_t{1} << bit;
-  const int i = elems_[first_ + bit];
-  const int in_s = (gray_ >> bit) & 1;
-  out = cur_;  // before the update, so the copy does not wait on the narrow stores below
-  out.block[i] = cur_.block[i] = in_s ? s_label_ : t_label_;
-  out.y[i] = cur_.y[i] = tau_.y[i] - (in_s & s_shift_);
+  // Gray code: one element of the split block crosses to the other sub-block, which toggles its
+  // label (and, after a rotation, its y) between two values.
+  const int i = elems_[first_ + std::countr_zero(++step_)];
+  const std::uint32_t y = static_cast<std::uint32_t>(tau_.y[i]);
+  if (y_toggle_) xor_word(cur_, i, y ^ (y - 1));  // only after a rotation; the same in a whole half
+  const int byte = kBlockOffset + i;
+  xor_word(cur_, byte >> 2, std::uint32_t{label_toggle_} << 8 * (byte & 3));
+  copy_pieces(out, cur_);
   return true;
 }
 

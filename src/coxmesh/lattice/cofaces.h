@@ -48,13 +48,14 @@ class CofaceEnumerator {
 
   // Cofacets: block split_ is cut into two sub-blocks; its last element t stays on one side
   // (half_ = 0: the second sub-block, 1: the first) while the set S of the others on the far side
-  // runs through the non-empty subsets of the block's first n − 1 elements in Gray-code order
-  // (gray_, step step_ of steps_ = 2^(n−1) − 1). cur_ is the last cofacet written; an element in S
-  // has label s_label_ and y lowered by s_shift_, the others of the block have label t_label_.
+  // runs through the non-empty subsets of the block's first n − 1 elements in Gray-code order (step
+  // step_ of steps_ = 2^(n−1) − 1). cur_ is the last cofacet written; an element entering or leaving
+  // S has its label XORed with label_toggle_ and, after a rotation (y_toggle_ ≠ 0), its y toggled
+  // between y and y − 1.
   Simplex cur_;
-  std::uint32_t step_ = 0, steps_ = 0, gray_ = 0;
-  int split_ = 0, half_ = 0, first_ = 0, s_shift_ = 0;
-  std::uint8_t s_label_ = 0, t_label_ = 0;
+  std::uint32_t step_ = 0, steps_ = 0, y_toggle_ = 0;
+  int split_ = 0, half_ = 0, first_ = 0;
+  std::uint8_t label_toggle_ = 0;
 
   // Other l: cuts_[b] = c_b; label_[i] = sub-block (0..c_b) of element i within its block; base_[i]
   // = first coface label of i's block (Σ_{g<b} (c_g + 1)); count_[b] = uses per label in block b.

@@ -152,6 +152,7 @@ class Tracer {
   std::vector<double> point_;
   std::vector<Worker> workers_;
   std::vector<ChunkOutput> chunks_;
+  std::unique_ptr<WorkerPool> pool_;  // started by the first parallel level
   std::atomic<bool> box_reached_{false};
 };
 
@@ -249,7 +250,8 @@ void Tracer::walk_parallel() {
     const std::size_t n = (end - begin + chunk - 1) / chunk;
     if (chunks_.size() < n) chunks_.resize(n);
     for (Worker& w : workers_) w.tested.clear(), w.payload.clear(), w.data.clear();
-    parallel_for(n, static_cast<int>(workers_.size()), [&](std::size_t c, int worker) {
+    if (!pool_) pool_ = std::make_unique<WorkerPool>(static_cast<int>(workers_.size()));
+    pool_->run(n, [&](std::size_t c, int worker) {
       chunks_[c].clear();
       const std::uint32_t a = begin + static_cast<std::uint32_t>(c) * chunk;
       process_chunk(a, std::min(end, a + chunk), workers_[worker], chunks_[c]);

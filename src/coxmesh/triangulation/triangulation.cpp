@@ -7,6 +7,7 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <numbers>
 #include <random>
@@ -17,6 +18,56 @@ namespace coxmesh {
 
 namespace {
 constexpr double kTieTolerance = 1e-9;  // as GUDHI: fractional parts within this share a block
+
+// 16-byte vectors (GCC/Clang vector extensions, SSE2 on x86-64) for the point location kernels:
+// branch-free and vectorised whatever the compiler's if-conversion does with floating-point
+// comparisons, and every array is stored and loaded in the same 16-byte pieces (a wide load of
+// narrower stores would stall until they reach the cache).
+using V2d = double __attribute__((vector_size(16)));
+using V2l = std::int64_t __attribute__((vector_size(16)));  // lane masks of V2d comparisons
+using V2i = std::int32_t __attribute__((vector_size(8)));
+using V4i = std::int32_t __attribute__((vector_size(16)));
+
+constexpr int padded_rows(int d) { return (d + 4) & ~3; }
+
+V2d abs(V2d v) { return (V2d)((V2l)v & ~(V2l)V2d{-0.0, -0.0}); }
+
+template <class V>
+V load(const void* p) {
+  V v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+template <class V>
+void store(void* p, const V& v) {
+  std::memcpy(p, &v, sizeof v);
+}
+
+// z = Λ^{-1}(x − b) for rows r .. r + 2C of the padded inverse (column-major, padded_rows(d) rows),
+// with C vector accumulators in registers across the columns.
+template <int C>
+void lattice_rows(const double* inv, std::ptrdiff_t ld, const V2d* u, int d, int r, double* z) {
+  V2d acc[C] = {};
+  const double* col = inv + r;
+#pragma GCC unroll 12  // completely for the compile-time dimensions (≤ 12)
+  for (int j = 0; j < d; ++j, col += ld)
+    for (int c = 0; c < C; ++c) acc[c] += load<V2d>(col + 2 * c) * u[j];
+  for (int c = 0; c < C; ++c) store(z + r + 2 * c, acc[c]);
+}
+
+// z_i = Σ_j Λ^{-1}_ij (x_j − b_j), summed in column order j = 0, 1, … for every row (the rounding
+// of a plain column-by-column accumulation), for i < padded_rows(d): z_d.. = 0. Twelve rows at a
+// time (6 + 1 vector registers), so that independent rows overlap. D > 0 fixes d at compile time.
+template <int D>
+void lattice_kernel(const double* inv, const double* b, const double* x, int d_runtime, double* z) {
+  const int d = D > 0 ? D : d_runtime, rows = padded_rows(d);
+  V2d u[kMaxDimension];
+  for (int j = 0; j < d; ++j) u[j] = V2d{x[j] - b[j], x[j] - b[j]};
+  int r = 0;
+  for (; r + 12 <= rows; r += 12) lattice_rows<6>(inv, rows, u, d, r, z);
+  if (rows - r == 8) lattice_rows<4>(inv, rows, u, d, r, z);
+  if (rows - r == 4) lattice_rows<2>(inv, rows, u, d, r, z);
+}
 
 std::string fmt(double v) {
   std::ostringstream os;
@@ -50,6 +101,8 @@ void Triangulation::factorize() {
   if (!(rcond > 1e-12))
     throw InputError("the matrix is singular or too ill-conditioned (reciprocal condition number " + fmt(rcond) + ")");
   inverse_ = matrix_.fullPivLu().inverse();
+  padded_inverse_ = Eigen::MatrixXd::Zero(padded_rows(d_), d_);
+  padded_inverse_.topRows(d_) = inverse_;
 }
 
 Triangulation Triangulation::freudenthal(int d) {
@@ -119,34 +172,9 @@ void Triangulation::lattice_coordinates(const double* x, double* y) const {
     for (int i = 0; i < d_; ++i) y[i] = x[i] - offset_[i];
     return;
   }
-  std::array<double, kMaxDimension> t;
-  for (int j = 0; j < d_; ++j) t[j] = x[j] - offset_[j];
-  // y = Λ^{-1}·t, eight (then four) rows at a time with the accumulators in registers, so that
-  // independent rows overlap. Every y_i is summed in column order j = 0, 1, … (the rounding of a
-  // plain column-by-column accumulation).
-  const double* inv = inverse_.data();  // column-major
-  const std::ptrdiff_t ld = d_;
-  int i = 0;
-  using Vec8 = Eigen::Matrix<double, 8, 1>;  // fixed-size: Eigen keeps it in vector registers
-  using Vec4 = Eigen::Matrix<double, 4, 1>;
-  for (; i + 8 <= d_; i += 8) {
-    Vec8 a = Vec8::Zero();
-    const double* col = inv + i;
-    for (int j = 0; j < d_; ++j, col += ld) a.noalias() += Eigen::Map<const Vec8>(col) * t[j];
-    Eigen::Map<Vec8>(y + i) = a;
-  }
-  for (; i + 4 <= d_; i += 4) {
-    Vec4 a = Vec4::Zero();
-    const double* col = inv + i;
-    for (int j = 0; j < d_; ++j, col += ld) a.noalias() += Eigen::Map<const Vec4>(col) * t[j];
-    Eigen::Map<Vec4>(y + i) = a;
-  }
-  for (; i < d_; ++i) {
-    double a = 0;
-    const double* col = inv + i;
-    for (int j = 0; j < d_; ++j, col += ld) a += col[0] * t[j];
-    y[i] = a;
-  }
+  alignas(16) std::array<double, kMaxDimension + 1> z;
+  lattice_kernel<0>(padded_inverse_.data(), offset_.data(), x, d_, z.data());
+  std::copy_n(z.data(), d_, y);
 }
 
 void Triangulation::cartesian(const std::int32_t* v, double* x) const {
@@ -184,64 +212,119 @@ Simplex Triangulation::locate(std::span<const double> x) const {
 
 namespace {
 
+// f = ⌊v⌋ and the fractional part v − f, snapped (f = the nearest integer, fraction 0) within the
+// tolerance of an integer; |v| < 2^30. Lanes out of that range (or NaN) are cleared in `ok` and
+// computed as 0. No libm calls: truncate, step down for negative non-integers; round up when the
+// fraction is at least 1/2 (exact halves never snap). Every difference here is exact.
+inline void floor_and_fraction(V2d v, V2d& f, V2d& frac, V2l& ok) {
+  const V2d one = {1, 1}, half = {0.5, 0.5}, tol = {kTieTolerance, kTieTolerance};
+  const V2d limit = {kMaxLatticeCoordinate - 1, kMaxLatticeCoordinate - 1};
+  const V2l in_range = abs(v) < limit;
+  ok &= in_range;
+  v = (V2d)((V2l)v & in_range);
+  f = __builtin_convertvector(__builtin_convertvector(v, V2i), V2d);
+  f -= (V2d)((V2l)one & (f > v));
+  frac = v - f;
+  const V2d up = (V2d)((V2l)one & (frac >= half));
+  const V2l snap = abs(frac - up) <= tol;  // |v − round(v)|
+  f += (V2d)((V2l)up & snap);
+  frac = (V2d)((V2l)frac & ~snap);
+}
+
+[[noreturn]] void throw_out_of_range(const double* z, int d) {
+  for (int i = 0; i < d; ++i)
+    if (!(std::abs(z[i]) < kMaxLatticeCoordinate - 1) && std::isfinite(z[i]))
+      throw InputError("the point is too far from the origin: lattice coordinate " + fmt(z[i]) + " exceeds 2^30");
+  throw InputError("the point has a NaN or infinite coordinate");
+}
+
+// rank_i = #{j < n : key_j > key_i} for the 4C keys: O(n·C) branch-free vector comparisons with the
+// keys and counts in registers, instead of a comparison sort's mispredicted branches.
+template <int C>
+void rank_groups(const std::int32_t* key, int n, std::int32_t* rank) {
+  V4i k[C], r[C] = {};
+  for (int c = 0; c < C; ++c) k[c] = load<V4i>(key + 4 * c);
+  for (int j = 0; j < n; ++j)
+    for (int c = 0; c < C; ++c) r[c] += k[c] < key[j];  // true is −1
+  for (int c = 0; c < C; ++c) store(rank + 4 * c, -r[c]);
+}
+
+template <int D>
+void rank_keys(const std::int32_t* key, int n, std::int32_t* rank) {
+  if constexpr (D > 0) {
+    rank_groups<padded_rows(D) / 4>(key, n, rank);
+  } else {
+    switch (padded_rows(n - 1) / 4) {
+      case 1: return rank_groups<1>(key, n, rank);
+      case 2: return rank_groups<2>(key, n, rank);
+      case 3: return rank_groups<3>(key, n, rank);
+      case 4: return rank_groups<4>(key, n, rank);
+      case 5: return rank_groups<5>(key, n, rank);
+      case 6: return rank_groups<6>(key, n, rank);
+      case 7: return rank_groups<7>(key, n, rank);
+      default: return rank_groups<8>(key, n, rank);
+    }
+  }
+}
+
 // Point location in FK coordinates (spec §1.7): y = ⌊v⌋, then the indices ordered by decreasing
 // fractional part, cut into blocks at strict drops. D > 0 fixes the dimension at compile time (small
-// d: fully unrolled), D = 0 takes it at run time. z holds the d lattice coordinates and has room
-// for kMaxDimension + 1 entries; it is overwritten with the fractional parts.
+// d: fully unrolled), D = 0 takes it at run time. z holds the lattice coordinates, padded with
+// zeros to padded_rows(d) entries.
 template <int D>
-void locate_fk(double* z, int d_runtime, Simplex& s) {
-  const int d = D > 0 ? D : d_runtime, n = d + 1;
-  // Sort keys: the fractional part quantised to 26 bits, then 31 − index (ties by index).
+void locate_fk(const double* z, int d_runtime, Simplex& s) {
+  const int d = D > 0 ? D : d_runtime, n = d + 1, rows = padded_rows(d);
+  // Sort keys: the fractional part quantised to 26 bits, then 31 − index (ties by index). Index d
+  // and the padding (fraction 0, index ≥ d) come last.
   alignas(16) std::array<std::int32_t, kMaxDimension + 1> key, rank;
-  for (int i = 0; i < d; ++i) {
-    const double v = z[i];
-    if (!(std::abs(v) < kMaxLatticeCoordinate - 1))
-      throw InputError(std::isfinite(v) ? "the point is too far from the origin: lattice coordinate " + fmt(v) +
-                                              " exceeds 2^30"
-                                        : "the point has a NaN or infinite coordinate");
-    // floor and round without libm calls or data-dependent branches (|v| < 2^30): truncate, step
-    // down for negative non-integers; r is round(v) except at exact halves, which never snap.
-    std::int64_t fi = static_cast<std::int64_t>(v);
-    fi -= static_cast<double>(fi) > v ? 1 : 0;
-    double f = static_cast<double>(fi);
-    double frac = v - f;
-    const double r = f + static_cast<double>(frac >= 0.5);
-    if (std::abs(v - r) <= kTieTolerance) {  // on a lattice hyperplane: snap
-      f = r;
-      frac = 0;
-    }
-    s.y[i] = static_cast<std::int32_t>(f);
-    z[i] = frac;
-    key[i] = (static_cast<std::int32_t>(frac * 67108864.0) << 5) | (31 - i);
+  alignas(16) std::array<double, kMaxDimension + 1> frac;
+  V2l ok = {-1, -1};
+  for (int i = 0; i < rows; i += 4) {
+    V2d f0, f1, q0, q1;
+    floor_and_fraction(load<V2d>(z + i), f0, q0, ok);
+    floor_and_fraction(load<V2d>(z + i + 2), f1, q1, ok);
+    store(frac.data() + i, q0);
+    store(frac.data() + i + 2, q1);
+    const V2d scale = {67108864.0, 67108864.0};
+    const V4i q = __builtin_shufflevector(__builtin_convertvector(q0 * scale, V2i),
+                                          __builtin_convertvector(q1 * scale, V2i), 0, 1, 2, 3);
+    store(key.data() + i, (q << 5) | V4i{31 - i, 30 - i, 29 - i, 28 - i});
+    // y (0 from index d on); the last group would reach past y, into the block labels.
+    const V4i y = __builtin_shufflevector(__builtin_convertvector(f0, V2i), __builtin_convertvector(f1, V2i), 0, 1, 2, 3);
+    if (i + 4 <= kMaxDimension) store(s.y.data() + i, y);
+    else
+      for (int l = 0; i + l < kMaxDimension; ++l) s.y[i + l] = y[l];
   }
-  z[d] = 0;
-  key[d] = 31 - d;
-  // Ranks by counting larger keys: O(d²) branch-free comparisons that vectorise (4 per
-  // instruction), instead of a comparison sort's mispredicted branches.
-  const int padded = (n + 3) & ~3;
-  for (int i = n; i < padded; ++i) key[i] = -1;
-  for (int i = 0; i < padded; ++i) rank[i] = 0;
-  for (int j = 0; j < n; ++j) {
-    const std::int32_t kj = key[j];
-    for (int i = 0; i < padded; ++i) rank[i] += key[i] < kj ? 1 : 0;
+  if (!(ok[0] & ok[1])) throw_out_of_range(z, d);
+  rank_keys<D>(key.data(), n, rank.data());
+  // Usual case: consecutive fractional parts in rank order drop by more than the tolerance, so the
+  // order is exact and every index is a block of its own: the blocks are the ranks.
+  std::array<double, kMaxDimension + 1> sorted;
+  for (int i = 0; i < n; ++i) sorted[rank[i]] = frac[i];
+  bool drops = true;
+  for (int p = 1; p < n; ++p) drops &= sorted[p - 1] > sorted[p] + kTieTolerance;
+  if (drops) {
+    for (int i = 0; i < n; ++i) s.block[i] = static_cast<std::uint8_t>(rank[i]);
+    s.k = static_cast<std::uint8_t>(d);
+    return;
   }
   std::array<std::uint8_t, kMaxDimension + 1> order{};
   for (int i = 0; i < n; ++i) order[rank[i]] = static_cast<std::uint8_t>(i);
   // Exact order: fractional parts closer than 2^-26 may be swapped by the quantisation; an
-  // insertion pass on the exact values repairs that (no work in the usual case).
+  // insertion pass on the exact values repairs that.
   for (int p = 1; p < n; ++p) {
     const std::uint8_t e = order[p];
-    const double ze = z[e];
-    if (!(z[order[p - 1]] < ze)) continue;
+    const double fe = frac[e];
+    if (!(frac[order[p - 1]] < fe)) continue;
     int q = p;
-    for (; q > 0 && z[order[q - 1]] < ze; --q) order[q] = order[q - 1];
+    for (; q > 0 && frac[order[q - 1]] < fe; --q) order[q] = order[q - 1];
     order[q] = e;
   }
   // Strict drops (beyond the tolerance) start new blocks.
   int b = 0;
   s.block[order[0]] = 0;
   for (int p = 1; p < n; ++p) {
-    b += z[order[p - 1]] > z[order[p]] + kTieTolerance ? 1 : 0;
+    b += frac[order[p - 1]] > frac[order[p]] + kTieTolerance ? 1 : 0;
     s.block[order[p]] = static_cast<std::uint8_t>(b);
   }
   s.k = static_cast<std::uint8_t>(b);
@@ -250,25 +333,15 @@ void locate_fk(double* z, int d_runtime, Simplex& s) {
 // locate() for a dimension fixed at compile time (D > 0: the small matrix–vector product and the
 // kernel are fully unrolled) or given at run time (D = 0).
 template <int D>
-Simplex locate_impl(const Triangulation& t, const double* x) {
+Simplex locate_impl(const Triangulation& t, const double* padded_inverse, const double* x) {
   const int d = D > 0 ? D : t.dimension();
-  std::array<double, kMaxDimension + 1> z;
-  if constexpr (D > 0) {
+  alignas(16) std::array<double, kMaxDimension + 1> z;
+  if (t.is_freudenthal()) {
     const double* b = t.offset().data();
-    if (t.is_freudenthal()) {
-      for (int i = 0; i < D; ++i) z[i] = x[i] - b[i];
-    } else {
-      std::array<double, D> u;
-      for (int j = 0; j < D; ++j) u[j] = x[j] - b[j];
-      const double* inv = t.inverse().data();  // column-major; same summation order as below
-      for (int i = 0; i < D; ++i) {
-        double a = 0;
-        for (int j = 0; j < D; ++j) a += inv[j * D + i] * u[j];
-        z[i] = a;
-      }
-    }
+    for (int i = 0; i < d; ++i) z[i] = x[i] - b[i];
+    for (int i = d; i < padded_rows(d); ++i) z[i] = 0;
   } else {
-    t.lattice_coordinates(x, z.data());
+    lattice_kernel<D>(padded_inverse, t.offset().data(), x, d, z.data());
   }
   Simplex s;
   s.d = static_cast<std::uint8_t>(d);
@@ -280,19 +353,19 @@ Simplex locate_impl(const Triangulation& t, const double* x) {
 
 Simplex Triangulation::locate(const double* x) const {
   switch (d_) {
-    case 1: return locate_impl<1>(*this, x);
-    case 2: return locate_impl<2>(*this, x);
-    case 3: return locate_impl<3>(*this, x);
-    case 4: return locate_impl<4>(*this, x);
-    case 5: return locate_impl<5>(*this, x);
-    case 6: return locate_impl<6>(*this, x);
-    case 7: return locate_impl<7>(*this, x);
-    case 8: return locate_impl<8>(*this, x);
-    case 9: return locate_impl<9>(*this, x);
-    case 10: return locate_impl<10>(*this, x);
-    case 11: return locate_impl<11>(*this, x);
-    case 12: return locate_impl<12>(*this, x);
-    default: return locate_impl<0>(*this, x);
+    case 1: return locate_impl<1>(*this, padded_inverse_.data(), x);
+    case 2: return locate_impl<2>(*this, padded_inverse_.data(), x);
+    case 3: return locate_impl<3>(*this, padded_inverse_.data(), x);
+    case 4: return locate_impl<4>(*this, padded_inverse_.data(), x);
+    case 5: return locate_impl<5>(*this, padded_inverse_.data(), x);
+    case 6: return locate_impl<6>(*this, padded_inverse_.data(), x);
+    case 7: return locate_impl<7>(*this, padded_inverse_.data(), x);
+    case 8: return locate_impl<8>(*this, padded_inverse_.data(), x);
+    case 9: return locate_impl<9>(*this, padded_inverse_.data(), x);
+    case 10: return locate_impl<10>(*this, padded_inverse_.data(), x);
+    case 11: return locate_impl<11>(*this, padded_inverse_.data(), x);
+    case 12: return locate_impl<12>(*this, padded_inverse_.data(), x);
+    default: return locate_impl<0>(*this, padded_inverse_.data(), x);
   }
 }
 

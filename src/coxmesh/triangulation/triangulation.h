@@ -74,6 +74,9 @@ class Triangulation {
 
   int d_ = 0;
   Eigen::MatrixXd matrix_, inverse_;
+  // Λ^{-1} with zero rows appended up to padded_rows(d) = a multiple of 4 above d: the lattice
+  // coordinate kernel computes whole 4-row groups, and rows d.. come out as 0.
+  Eigen::MatrixXd padded_inverse_;
   Eigen::VectorXd offset_;
   bool identity_ = false;
   double known_longest_edge_ = 0;  // > 0 when the closed form applies
