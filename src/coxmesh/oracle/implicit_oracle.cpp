@@ -96,19 +96,25 @@ std::string ImplicitOracle::not_finite_message(const std::int32_t* v, int i, dou
   return os.str();
 }
 
-Intersection ImplicitOracle::intersect(const Simplex& tau, double* point) {
+// M(τ) of spec §3, column-major: column j = (1, F(v_j)); and D at the vertices when asked.
+void ImplicitOracle::system_matrix(const Simplex& tau, double* m, double* domain_values) {
   const int n = k_ + 1;
-  double m[32 * 32];
-  double dval[32];
   std::int32_t v[kMaxDimension];
   for (int j = 0; j < n; ++j) {
     tau.vertex(j, v);
     const double* val = values_at(v);
     m[j * n] = 1.0;
     for (int i = 0; i < k_; ++i) m[j * n + 1 + i] = val[i];
-    if (domain_) dval[j] = val[k_];
+    if (domain_ && domain_values) domain_values[j] = val[k_];
   }
-  double lambda[32];
+}
+
+Intersection ImplicitOracle::intersect(const Simplex& tau, double* point) {
+  const int n = k_ + 1;
+  double m[SmallLu::kMaxN * SmallLu::kMaxN];
+  double dval[SmallLu::kMaxN];
+  system_matrix(tau, m, dval);
+  double lambda[SmallLu::kMaxN];
   if (!lexicographic_solve(n, m, lambda)) return {};
   Intersection r{true, -1.0};
   double xs[32 * kMaxDimension];
@@ -128,13 +134,7 @@ Intersection ImplicitOracle::intersect(const Simplex& tau, double* point) {
 bool ImplicitOracle::pivot_enter(const Simplex& tau) {
   const int n = k_ + 1;
   double m[SmallLu::kMaxN * SmallLu::kMaxN];
-  std::int32_t v[kMaxDimension];
-  for (int j = 0; j < n; ++j) {
-    tau.vertex(j, v);
-    const double* val = values_at(v);
-    m[j * n] = 1.0;
-    for (int i = 0; i < k_; ++i) m[j * n + 1 + i] = val[i];
-  }
+  system_matrix(tau, m, nullptr);
   if (n == 2) {  // k = 1: signs decide (see pivot_exit)
     pivot_lambda_[0] = m[1], pivot_lambda_[1] = m[3];
     return true;

@@ -55,6 +55,7 @@ class ImplicitOracle final : public IntersectionOracle {
  private:
   const double* values_at(const std::int32_t* v);  // F (and D) at a lattice vertex
   void evaluate(const std::int32_t* v, double* out);
+  void system_matrix(const Simplex& tau, double* m, double* domain_values);
   std::string not_finite_message(const std::int32_t* v, int i, double value) const;
 
   Triangulation triangulation_;
