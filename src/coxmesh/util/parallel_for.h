@@ -105,11 +105,4 @@ class WorkerPool {
   bool stopping_ = false;
 };
 
-/// One parallel loop on `workers` threads started for it (see WorkerPool::run).
-inline void parallel_for(std::size_t tasks, int workers, const std::function<void(std::size_t, int)>& fn) {
-  WorkerPool pool(static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(std::max(workers, 1)),
-                                                         std::max<std::size_t>(tasks, 1))));
-  pool.run(tasks, fn);
-}
-
 }  // namespace coxmesh
