@@ -1,7 +1,7 @@
 // Multi-core scaling of tracing and cell complex construction (issue 6). For every case: the
 // sequential walk (one oracle, the single-thread implementation) against the parallel one with
-// 1, 2, 4, … threads (one oracle per worker, sharing the vertex values), and the cell complex with 1 and N threads. Wall
-// time, median of `runs`. Also checks that every run gives the same |S| and cell count.
+// 1, 2, 4, … threads (one oracle per worker, sharing the vertex values), and the cell complex with
+// the same thread counts. Wall time, best and median of `runs` interleaved runs. Also checks that every run gives the same |S| and cell count.
 //
 // Usage: bench_parallel [max-threads = hardware threads] [runs = 3] [case-name-substring]
 // Threads beyond the number of cores only show the overhead; run it on a machine with more cores
@@ -56,6 +56,8 @@ double process_cpu() {
   return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
+double min_of(const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); }
+
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
@@ -64,7 +66,7 @@ double median(std::vector<double> v) {
 struct Timing {
   double trace = 0, complex = 0, trace_cpu = 0, complex_cpu = 0;  // wall and CPU time of all threads
   std::size_t simplices = 0, cells = 0;
-  std::uint64_t evaluations = 0;
+  std::uint64_t evaluations = 0, oracle_calls = 0;
 };
 
 // threads = 0: the sequential overload (one oracle); otherwise the factory overload.
@@ -88,6 +90,7 @@ Timing run(const Case& c, int threads) {
   r.trace_cpu = process_cpu() - c0;
   r.simplices = traced.simplices.size();
   r.evaluations = traced.function_evaluations;
+  r.oracle_calls = traced.oracle_calls;
   t0 = std::chrono::steady_clock::now();
   c0 = process_cpu();
   const CellComplex cc = build_cell_complex(std::move(traced), std::max(threads, 1));
@@ -109,35 +112,42 @@ int main(int argc, char** argv) {
   for (int n = 1; n <= max_threads; n *= 2) counts.push_back(n);
   if (counts.back() != max_threads) counts.push_back(max_threads);
 
-  std::printf("%d hardware threads; wall time, median of %d runs; speedup = sequential time / time\n\n", cores, runs);
-  std::printf("| case | \\|S\\| | cells | threads | trace s | trace speedup | trace CPU s | complex s | complex speedup | complex CPU s | F evaluations |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("%d hardware threads; wall time, best and median of %d interleaved runs; speedup = best 1-thread time / "
+              "best time (the sequential row: the single-thread overload, one oracle)\n\n",
+              cores, runs);
+  std::printf("| case | \\|S\\| | cells | threads | trace s (best / median) | trace speedup | trace CPU s | complex s "
+              "(best / median) | complex speedup | complex CPU s | F evaluations | oracle calls |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Case& c : make_cases()) {
     if (c.name.find(filter) == std::string::npos) continue;
-    double seq_trace = 0, seq_complex = 0;
-    std::size_t simplices = 0, cells = 0;
-    for (int threads : counts) {
-      std::vector<double> trace, complex, trace_cpu, complex_cpu;
-      Timing last;
-      for (int i = 0; i < runs; ++i) {
-        last = run(c, threads);
-        trace.push_back(last.trace);
-        complex.push_back(last.complex);
-        trace_cpu.push_back(last.trace_cpu);
-        complex_cpu.push_back(last.complex_cpu);
-      }
-      if (threads == 0) {
-        seq_trace = median(trace), seq_complex = median(complex);
-        simplices = last.simplices, cells = last.cells;
-      } else if (last.simplices != simplices || last.cells != cells) {
-        std::fprintf(stderr, "%s: %d threads gave |S| %zu and %zu cells, the sequential walk %zu and %zu\n",
-                     c.name.c_str(), threads, last.simplices, last.cells, simplices, cells);
-        return 1;
-      }
-      const double t = median(trace), x = median(complex);
-      std::printf("| %s | %zu | %zu | %s | %.3f | %.2f | %.3f | %.3f | %.2f | %.3f | %llu |\n", c.name.c_str(), simplices,
-                  cells, threads == 0 ? "sequential" : std::to_string(threads).c_str(), t, seq_trace / t, median(trace_cpu),
-                  x, seq_complex / x, median(complex_cpu), static_cast<unsigned long long>(last.evaluations));
+    // Runs are interleaved over the thread counts, so that slow phases of a shared machine hit all
+    // of them alike.
+    std::vector<std::vector<Timing>> timings(counts.size());
+    for (int i = 0; i < runs; ++i)
+      for (std::size_t n = 0; n < counts.size(); ++n) timings[n].push_back(run(c, counts[n]));
+    auto column = [](const std::vector<Timing>& ts, double Timing::*field) {
+      std::vector<double> v;
+      for (const Timing& t : ts) v.push_back(t.*field);
+      return v;
+    };
+    const std::size_t simplices = timings[0][0].simplices, cells = timings[0][0].cells;
+    const double one_trace = min_of(column(timings[1], &Timing::trace));
+    const double one_complex = min_of(column(timings[1], &Timing::complex));
+    for (std::size_t n = 0; n < counts.size(); ++n) {
+      for (const Timing& t : timings[n])
+        if (t.simplices != simplices || t.cells != cells) {
+          std::fprintf(stderr, "%s: %d threads gave |S| %zu and %zu cells, the sequential walk %zu and %zu\n",
+                       c.name.c_str(), counts[n], t.simplices, t.cells, simplices, cells);
+          return 1;
+        }
+      const auto trace = column(timings[n], &Timing::trace), complex = column(timings[n], &Timing::complex);
+      const Timing& last = timings[n].back();
+      std::printf("| %s | %zu | %zu | %s | %.3f / %.3f | %.2f | %.3f | %.3f / %.3f | %.2f | %.3f | %llu | %llu |\n",
+                  c.name.c_str(), simplices, cells, counts[n] == 0 ? "sequential" : std::to_string(counts[n]).c_str(),
+                  min_of(trace), median(trace), one_trace / min_of(trace), median(column(timings[n], &Timing::trace_cpu)),
+                  min_of(complex), median(complex), one_complex / min_of(complex),
+                  median(column(timings[n], &Timing::complex_cpu)), static_cast<unsigned long long>(last.evaluations),
+                  static_cast<unsigned long long>(last.oracle_calls));
       std::fflush(stdout);
     }
   }
