@@ -20,10 +20,16 @@ std::set<Simplex> faces(const Simplex& s, int k) {
   return out;
 }
 
+// Through both APIs (copy out, and a view of the enumerator's own copy), which must agree.
 std::set<Simplex> cofaces(const Simplex& s, int l) {
   std::set<Simplex> out;
-  CofaceEnumerator e(s, l);
-  for (Simplex f; e.next(f);) EXPECT_TRUE(out.insert(f).second) << "duplicate coface " << f;
+  CofaceEnumerator e(s, l), view(s, l);
+  for (Simplex f; e.next(f);) {
+    EXPECT_TRUE(out.insert(f).second) << "duplicate coface " << f;
+    const Simplex* g = view.next();
+    EXPECT_TRUE(g && *g == f) << "the view API gives another coface than " << f;
+  }
+  EXPECT_EQ(view.next(), nullptr);
   return out;
 }
 

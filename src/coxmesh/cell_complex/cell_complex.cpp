@@ -26,12 +26,10 @@ CellLevel next_level(const CellLevel& prev, int d, int l) {
   level.simplices.reserve(prev.size());
   std::vector<std::uint64_t> incidences;  // (cell << 32) | facet, in discovery order
   CofaceEnumerator cofaces;
-  Simplex mu, nu;
   for (std::uint32_t c = 0; c < prev.size(); ++c) {
-    mu = prev.simplices.simplex(c, d);
-    cofaces.reset(mu, l);
-    while (cofaces.next(nu)) {
-      const std::uint32_t id = level.simplices.insert(nu).first;
+    cofaces.reset(prev.simplices.simplex(c, d), l);
+    while (const Simplex* nu = cofaces.next()) {
+      const std::uint32_t id = level.simplices.insert(*nu).first;
       incidences.push_back((static_cast<std::uint64_t>(id) << 32) | c);
     }
   }
@@ -61,13 +59,12 @@ CellLevel next_level_parallel(const CellLevel& prev, int d, int l, WorkerPool& p
       Chunk& out = chunks[t];
       out.keys.clear(), out.facets.clear(), out.hashes.clear();
       CofaceEnumerator cofaces;
-      Simplex nu;
       std::uint32_t key[packed_words(kMaxDimension)];
       const std::uint32_t a = first + static_cast<std::uint32_t>(t) * kChunk, b = std::min(last, a + kChunk);
       for (std::uint32_t c = a; c < b; ++c) {
         cofaces.reset(prev.simplices.simplex(c, d), l);
-        while (cofaces.next(nu)) {
-          pack(nu, key);
+        while (const Simplex* nu = cofaces.next()) {
+          pack(*nu, key);
           out.keys.insert(out.keys.end(), key, key + words);
           out.hashes.push_back(hash_words(key, words));
           out.facets.push_back(c);

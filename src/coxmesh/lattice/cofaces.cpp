@@ -9,29 +9,15 @@
 namespace coxmesh {
 
 namespace {
-// The current cofacet is only read and written in the same ten 16-byte pieces, so that every load
-// of it is served by a single earlier store (store-to-load forwarding): a narrow store followed by
-// a wider load of the same bytes would stall until the store reaches the cache, on every cofacet.
+// Simplices are copied in the 16-byte pieces gray_step() uses (see there).
 using Piece = std::uint32_t __attribute__((vector_size(16)));
-constexpr int kPieces = sizeof(Simplex) / sizeof(Piece);
 static_assert(sizeof(Simplex) % sizeof(Piece) == 0 && offsetof(Simplex, y) == 0);
-constexpr int kBlockOffset = offsetof(Simplex, block);
-
-Piece load_piece(const Simplex& s, int p) {
-  Piece v;
-  std::memcpy(&v, reinterpret_cast<const unsigned char*>(&s) + sizeof(Piece) * p, sizeof(Piece));
-  return v;
-}
-void store_piece(Simplex& s, int p, Piece v) {
-  std::memcpy(reinterpret_cast<unsigned char*>(&s) + sizeof(Piece) * p, &v, sizeof(Piece));
-}
 void copy_pieces(Simplex& dst, const Simplex& src) {
-  for (int p = 0; p < kPieces; ++p) store_piece(dst, p, load_piece(src, p));
-}
-// s's 4-byte word w ^= v.
-void xor_word(Simplex& s, int w, std::uint32_t v) {
-  static constexpr Piece kLane[4] = {{~0u, 0, 0, 0}, {0, ~0u, 0, 0}, {0, 0, ~0u, 0}, {0, 0, 0, ~0u}};
-  store_piece(s, w >> 2, load_piece(s, w >> 2) ^ (Piece{v, v, v, v} & kLane[w & 3]));
+  for (std::size_t p = 0; p < sizeof(Simplex); p += sizeof(Piece)) {
+    Piece v;
+    std::memcpy(&v, reinterpret_cast<const unsigned char*>(&src) + p, sizeof(Piece));
+    std::memcpy(reinterpret_cast<unsigned char*>(&dst) + p, &v, sizeof(Piece));
+  }
 }
 }  // namespace
 
@@ -43,10 +29,10 @@ void CofaceEnumerator::reset(const Simplex& tau, int l) {
   l_ = l;
   const int k = tau.k, d = tau.d;
   // Bucket the elements by block (counting sort keeps each block increasing).
-  start_.fill(0);
+  std::array<int, kN + 1> fill;
+  for (int b = 0; b <= k + 1; ++b) start_[b] = 0;
   for (int i = 0; i <= d; ++i) ++start_[tau.block[i] + 1];
-  for (int b = 0; b <= k; ++b) start_[b + 1] += start_[b];
-  std::array<int, kN + 1> fill = start_;
+  for (int b = 0; b <= k; ++b) fill[b] = start_[b], start_[b + 1] += start_[b];
   for (int i = 0; i <= d; ++i) elems_[fill[tau.block[i]]++] = static_cast<std::uint8_t>(i);
   started_ = false;
   done_ = false;
@@ -206,30 +192,29 @@ void CofaceEnumerator::build(Simplex& out) const {
   out.block[d] = static_cast<std::uint8_t>(l_);
 }
 
-bool CofaceEnumerator::next(Simplex& out) {
-  if (step_ == steps_) {
-    if (done_) return false;
-    if (l_ != tau_.k + 1) return next_general(out);
-    if (!start_split()) return false;
-  }
-  // Gray code: one element of the split block crosses to the other sub-block, which toggles its
-  // label (and, after a rotation, its y) between two values.
-  const int i = elems_[first_ + std::countr_zero(++step_)];
-  const std::uint32_t y = static_cast<std::uint32_t>(tau_.y[i]);
-  if (y_toggle_) xor_word(cur_, i, y ^ (y - 1));  // only after a rotation; the same in a whole half
-  const int byte = kBlockOffset + i;
-  xor_word(cur_, byte >> 2, std::uint32_t{label_toggle_} << 8 * (byte & 3));
-  copy_pieces(out, cur_);
-  return true;
+// The current split is exhausted: the next one, or the general walk for l > k + 1.
+const Simplex* CofaceEnumerator::next_block_or_general() {
+  if (done_) return nullptr;
+  if (l_ != tau_.k + 1) return next_general() ? &cur_ : nullptr;
+  if (!start_split()) return nullptr;
+  gray_step();
+  return &cur_;
 }
 
-bool CofaceEnumerator::next_general(Simplex& out) {
+bool CofaceEnumerator::next(Simplex& out) {
+  const Simplex* mu = next();
+  if (mu) copy_pieces(out, *mu);
+  return mu != nullptr;
+}
+
+// Other l: the general walk over cut vectors and splits writes each coface into cur_.
+bool CofaceEnumerator::next_general() {
   const int k = tau_.k;
   if (!started_) {
     started_ = true;
     first_composition();
     start_composition();
-    build(out);
+    build(cur_);
     return true;
   }
   for (int b = k; b >= 0; --b) {
@@ -237,13 +222,13 @@ bool CofaceEnumerator::next_general(Simplex& out) {
       // Blocks without a cut keep their single split (all labels 0) and need no reset.
       for (int g = b + 1; g <= k; ++g)
         if (cuts_[g] != 0) first_split(g);
-      build(out);
+      build(cur_);
       return true;
     }
   }
   if (next_composition()) {
     start_composition();
-    build(out);
+    build(cur_);
     return true;
   }
   done_ = true;

@@ -2,7 +2,10 @@
 #pragma once
 
 #include <array>
+#include <bit>
+#include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 #include "coxmesh/lattice/simplex.h"
 
@@ -15,22 +18,32 @@ namespace coxmesh {
 /// unspecified.
 ///
 /// Cofacets (l = k + 1, the tracer's case) split one block in two and are walked in Gray-code
-/// order, so consecutive cofacets differ in one index: O(1) work per cofacet beyond copying it out.
+/// order, so consecutive cofacets differ in one index: O(1) work per cofacet.
 /// Other l: constant work per coface beyond O(d) to write it out.
 ///
 ///   CofaceEnumerator cofacets(tau, tau.dimension() + 1);
-///   for (Simplex mu; cofacets.next(mu);) use(mu);
+///   while (const Simplex* mu = cofacets.next()) use(*mu);
 class CofaceEnumerator {
  public:
   CofaceEnumerator() = default;
   CofaceEnumerator(const Simplex& tau, int l) { reset(tau, l); }
   /// Throws InputError unless dim τ ≤ l ≤ d.
   void reset(const Simplex& tau, int l);
+  /// The next coface, or nullptr after the last: a view of the enumerator's own copy, valid until
+  /// the next call (no copy; like dereferencing an iterator).
+  const Simplex* next() {
+    if (step_ == steps_) return next_block_or_general();
+    gray_step();
+    return &cur_;
+  }
+  /// Copies the next coface into `out`; false after the last.
   bool next(Simplex& out);
 
  private:
+  const Simplex* next_block_or_general();
+  void gray_step();
   bool start_split();
-  bool next_general(Simplex& out);
+  bool next_general();
   bool first_composition();
   bool next_composition();
   void start_composition();
@@ -43,13 +56,15 @@ class CofaceEnumerator {
   int l_ = 0;
   bool started_ = false, done_ = true;
   // Elements of τ's blocks, grouped by block: elems_[start_[b] .. start_[b+1]).
-  std::array<std::uint8_t, kN> elems_{};
-  std::array<int, kN + 1> start_{};
+  // (The arrays below are written by reset() and the walks before they are read, and left
+  // uninitialised here: an enumerator per simplex must be cheap to construct.)
+  std::array<std::uint8_t, kN> elems_;
+  std::array<int, kN + 1> start_;
 
   // Cofacets: block split_ is cut into two sub-blocks; its last element t stays on one side
   // (half_ = 0: the second sub-block, 1: the first) while the set S of the others on the far side
   // runs through the non-empty subsets of the block's first n − 1 elements in Gray-code order (step
-  // step_ of steps_ = 2^(n−1) − 1). cur_ is the last cofacet written; an element entering or leaving
+  // step_ of steps_ = 2^(n−1) − 1). cur_ is the current coface (of either walk); an element entering or leaving
   // S has its label XORed with label_toggle_ and, after a rotation (y_toggle_ ≠ 0), its y toggled
   // between y and y − 1.
   Simplex cur_;
@@ -59,11 +74,33 @@ class CofaceEnumerator {
 
   // Other l: cuts_[b] = c_b; label_[i] = sub-block (0..c_b) of element i within its block; base_[i]
   // = first coface label of i's block (Σ_{g<b} (c_g + 1)); count_[b] = uses per label in block b.
-  std::array<int, kN> cuts_{};
-  std::array<std::uint8_t, kN> label_{};
-  std::array<std::uint8_t, kN> base_{};
-  std::array<std::array<std::uint8_t, kN>, kN> count_;  // rows 0..k set by first_split; not zeroed (1 KB)
+  std::array<int, kN> cuts_;
+  std::array<std::uint8_t, kN> label_;
+  std::array<std::uint8_t, kN> base_;
+  std::array<std::array<std::uint8_t, kN>, kN> count_;  // rows 0..k set by first_split (1 KB)
 };
+
+// Gray code: one element of the split block crosses to the other sub-block, which toggles its label
+// (and, after a rotation, its y) between two values. cur_ is only read and written in the same
+// 16-byte pieces, so that every load of it is served by a single earlier store (store-to-load
+// forwarding): a narrow store followed by a wider load of the same bytes would stall until the
+// store reaches the cache, on every cofacet.
+inline void CofaceEnumerator::gray_step() {
+  using Piece = std::uint32_t __attribute__((vector_size(16)));
+  static constexpr Piece kLane[4] = {{~0u, 0, 0, 0}, {0, ~0u, 0, 0}, {0, 0, ~0u, 0}, {0, 0, 0, ~0u}};
+  auto xor_word = [this](int w, std::uint32_t v) {  // cur_'s 4-byte word w ^= v
+    unsigned char* p = reinterpret_cast<unsigned char*>(&cur_) + 16 * (w >> 2);
+    Piece piece;
+    std::memcpy(&piece, p, 16);
+    piece ^= Piece{v, v, v, v} & kLane[w & 3];
+    std::memcpy(p, &piece, 16);
+  };
+  const int i = elems_[first_ + std::countr_zero(++step_)];
+  const std::uint32_t y = static_cast<std::uint32_t>(tau_.y[i]);
+  if (y_toggle_) xor_word(i, y ^ (y - 1));  // only after a rotation; the same in a whole half
+  const int byte = static_cast<int>(offsetof(Simplex, block)) + i;
+  xor_word(byte >> 2, std::uint32_t{label_toggle_} << 8 * (byte & 3));
+}
 
 /// Number of l-cofaces of τ (spec §1.5): Σ over cut vectors of Π_i a(n_i, c_i + 1), where
 /// a(n, j) = j!·S(n, j) counts ordered partitions. Throws InputError only if the count, or a term

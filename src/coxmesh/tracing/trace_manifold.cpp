@@ -218,7 +218,7 @@ bool Tracer::start_level() {
 
 void Tracer::walk() {
   if (workers_.size() > 1) return walk_parallel();
-  Simplex tau, mu;
+  Simplex tau;
   CofaceEnumerator cofacets;
   std::int32_t v[kMaxDimension];
   for (; head_ < result_.simplices.size(); ++head_) {
@@ -226,7 +226,8 @@ void Tracer::walk() {
     tau = result_.simplices.simplex(head_, d_);
     const bool pivots = oracle_.pivot_enter(tau);
     cofacets.reset(tau, k_ + 1);
-    while (cofacets.next(mu)) {
+    while (const Simplex* cofacet = cofacets.next()) {
+      const Simplex& mu = *cofacet;
       const std::uint32_t known = result_.simplices.size();
       // (τ's key is fetched per cofacet: classify appends to S, which may move the keys)
       const Found f = other_transverse_facet(oracle_, pivots, tau, result_.simplices.key(head_), arrivals_[head_], mu,
@@ -300,7 +301,7 @@ Found Tracer::classify_in_level(const Simplex& tau, Worker& worker, ChunkOutput&
 
 void Tracer::process_chunk(std::uint32_t begin, std::uint32_t end, Worker& worker, ChunkOutput& out) {
   const int words = packed_words(d_);
-  Simplex tau, mu;
+  Simplex tau;
   CofaceEnumerator cofacets;
   std::uint32_t mu_key[packed_words(kMaxDimension)];
   std::int32_t v[kMaxDimension];
@@ -309,7 +310,8 @@ void Tracer::process_chunk(std::uint32_t begin, std::uint32_t end, Worker& worke
     tau = unpack(tau_key, d_);
     const bool pivots = worker.oracle->pivot_enter(tau);
     cofacets.reset(tau, k_ + 1);
-    while (cofacets.next(mu)) {
+    while (const Simplex* cofacet = cofacets.next()) {
+      const Simplex& mu = *cofacet;
       const std::size_t known = out.inside_arrivals.size();
       const Found f = other_transverse_facet(*worker.oracle, pivots, tau, tau_key, arrivals_[id], mu,
                                              [&](const Simplex& s) { return classify_in_level(s, worker, out); });
