@@ -12,7 +12,7 @@ Simplex face_from_indices(const Simplex& sigma, const int* indices, int k) {
   for (int b = 0; b <= l; ++b) relabel[b] = static_cast<std::uint8_t>(k);
   for (int h = 1; h <= k; ++h)
     for (int b = indices[h - 1]; b < indices[h]; ++b) relabel[b] = static_cast<std::uint8_t>(h - 1);
-  Simplex f;
+  Simplex f = kBlankSimplex;
   f.d = sigma.d;
   f.k = static_cast<std::uint8_t>(k);
   const int i0 = indices[0];

@@ -105,8 +105,10 @@ void pack(const Simplex& s, std::uint32_t* out) {
   }
 }
 
+const Simplex kBlankSimplex{};
+
 Simplex unpack(const std::uint32_t* words, int d) {
-  Simplex s;
+  Simplex s = kBlankSimplex;
   s.d = static_cast<std::uint8_t>(d);
   for (int i = 0; i < d; ++i) s.y[i] = static_cast<std::int32_t>(words[i]);
   std::memcpy(s.block.data(), words + d, 4 * ((d + 1 + 3) / 4));

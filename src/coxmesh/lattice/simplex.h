@@ -72,6 +72,11 @@ struct Simplex {
 };
 
 static_assert(std::is_trivially_copyable_v<Simplex>);
+
+/// The zero simplex, defined out of line. Hot paths start a result with `Simplex s = kBlankSimplex;`:
+/// copying an opaque constant takes ten vector moves, where zeroing a value-initialised Simplex
+/// compiles to a `rep stos` that is slow to start for 160 bytes.
+extern const Simplex kBlankSimplex;
 static_assert(sizeof(Simplex) == 160, "y (31 int32) + block (32 bytes) + d + k, padded");
 
 /// Total order: y lexicographically, then more blocks first (a face sorts after its cofaces, as in

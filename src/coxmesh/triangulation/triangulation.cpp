@@ -55,12 +55,44 @@ void lattice_rows(const double* inv, std::ptrdiff_t ld, const V2d* u, int d, int
   for (int c = 0; c < C; ++c) store(z + r + 2 * c, acc[c]);
 }
 
+// The same with 32-byte vectors, for d > 12 (see locate_large): four rows per register.
+using V4d = double __attribute__((vector_size(32)));
+template <int C>
+[[gnu::always_inline]] inline void lattice_rows_wide(const double* inv, std::ptrdiff_t ld, const double* u, int d,
+                                                     int r, double* z) {
+  V4d acc[C] = {};
+  const double* col = inv + r;
+  for (int j = 0; j < d; ++j, col += ld) {
+    const V4d uj = {u[j], u[j], u[j], u[j]};
+    for (int c = 0; c < C; ++c) {
+      V4d m;  // (memcpy, not load<>: a 32-byte vector by value would change the ABI without AVX)
+      std::memcpy(&m, col + 4 * c, sizeof m);
+      acc[c] += m * uj;
+    }
+  }
+  for (int c = 0; c < C; ++c) std::memcpy(z + r + 4 * c, &acc[c], sizeof acc[c]);
+}
+
 // z_i = Σ_j Λ^{-1}_ij (x_j − b_j), summed in column order j = 0, 1, … for every row (the rounding
 // of a plain column-by-column accumulation), for i < padded_rows(d): z_d.. = 0. Twelve rows at a
-// time (6 + 1 vector registers), so that independent rows overlap. D > 0 fixes d at compile time.
+// time (6 + 1 vector registers), so that independent rows overlap. D > 0 fixes d at compile time;
+// D = 0 (d > 12) takes 16 rows at a time in 32-byte vectors: single instructions where compiled for
+// AVX2 (locate_large), pairs of 16-byte ones otherwise. No FMA either way, and every row is summed
+// in the same order, so the result is bitwise the same on every machine.
 template <int D>
-void lattice_kernel(const double* inv, const double* b, const double* x, int d_runtime, double* z) {
+[[gnu::always_inline]] inline void lattice_kernel(const double* inv, const double* b, const double* x, int d_runtime,
+                                                  double* z) {
   const int d = D > 0 ? D : d_runtime, rows = padded_rows(d);
+  if constexpr (D == 0) {
+    double u[kMaxDimension];
+    for (int j = 0; j < d; ++j) u[j] = x[j] - b[j];
+    int r = 0;
+    for (; r + 16 <= rows; r += 16) lattice_rows_wide<4>(inv, rows, u, d, r, z);
+    if (rows - r == 12) lattice_rows_wide<3>(inv, rows, u, d, r, z);
+    if (rows - r == 8) lattice_rows_wide<2>(inv, rows, u, d, r, z);
+    if (rows - r == 4) lattice_rows_wide<1>(inv, rows, u, d, r, z);
+    return;
+  }
   V2d u[kMaxDimension];
   for (int j = 0; j < d; ++j) u[j] = V2d{x[j] - b[j], x[j] - b[j]};
   int r = 0;
@@ -343,10 +375,18 @@ Simplex locate_impl(const Triangulation& t, const double* padded_inverse, const 
   } else {
     lattice_kernel<D>(padded_inverse, t.offset().data(), x, d, z.data());
   }
-  Simplex s;
+  Simplex s = kBlankSimplex;
   s.d = static_cast<std::uint8_t>(d);
   locate_fk<D>(z.data(), d, s);
   return s;
+}
+
+// d > 12: compiled for AVX2 and for the baseline, chosen once at load time (the matrix–vector
+// product is most of the work there); everything it calls is inlined into each version.
+[[gnu::target_clones("avx2", "default"), gnu::flatten]] Simplex locate_large(const Triangulation& t,
+                                                                             const double* padded_inverse,
+                                                                             const double* x) {
+  return locate_impl<0>(t, padded_inverse, x);
 }
 
 }  // namespace
@@ -365,7 +405,7 @@ Simplex Triangulation::locate(const double* x) const {
     case 10: return locate_impl<10>(*this, padded_inverse_.data(), x);
     case 11: return locate_impl<11>(*this, padded_inverse_.data(), x);
     case 12: return locate_impl<12>(*this, padded_inverse_.data(), x);
-    default: return locate_impl<0>(*this, padded_inverse_.data(), x);
+    default: return locate_large(*this, padded_inverse_.data(), x);
   }
 }
 
