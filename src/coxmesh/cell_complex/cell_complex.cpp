@@ -19,74 +19,81 @@ void set_facets(CellLevel& level, const std::vector<std::uint64_t>& incidences) 
   for (std::uint64_t e : incidences) level.facet_ids[fill[e >> 32]++] = static_cast<std::uint32_t>(e);
 }
 
-// Level j from level j − 1: every l-coface ν of a cell's simplex is a cell, with that cell as facet.
-CellLevel next_level(const CellLevel& prev, int d, int l) {
-  CellLevel level;
-  level.simplices = PackedKeyIndex(packed_words(d));
-  level.simplices.reserve(prev.size());
-  std::vector<std::uint64_t> incidences;  // (cell << 32) | facet, in discovery order
-  CofaceEnumerator cofaces;
-  for (std::uint32_t c = 0; c < prev.size(); ++c) {
-    cofaces.reset(prev.simplices.simplex(c, d), l);
-    while (const Simplex* nu = cofaces.next()) {
-      const std::uint32_t id = level.simplices.insert(*nu).first;
-      incidences.push_back((static_cast<std::uint64_t>(id) << 32) | c);
-    }
-  }
-  set_facets(level, incidences);
-  return level;
-}
-
-// The same level with `workers` threads: batches of cells have their cofaces enumerated, packed
-// and hashed in parallel, then numbered in cell order (hashes known ahead, so the table slots are
-// prefetched). Batches bound the extra memory.
-CellLevel next_level_parallel(const CellLevel& prev, int d, int l, WorkerPool& pool) {
-  constexpr std::uint32_t kChunk = 256, kChunksPerBatch = 64;
+// Level j from level j − 1: every l-coface ν of a cell's simplex is a cell, with that cell as
+// facet; cells are numbered in order of discovery, cell by cell of level j − 1. The cells of level
+// j − 1 go in batches of chunks, in three stages: the cofaces of each chunk are enumerated, packed
+// and hashed (a task per chunk); the batch is numbered, inserting its cofaces into the index in
+// order (one task: the only serial step); its incidences are written out (a task per chunk). A
+// parallel round numbers batch b while it enumerates batch b + 1 and writes out batch b − 1, with
+// three sets of buffers; the numbering task comes first, so it starts at once. The result is the
+// same for any number of workers; batches bound the extra memory.
+CellLevel next_level(const CellLevel& prev, int d, int l, WorkerPool& pool) {
+  constexpr std::uint32_t kChunk = 256, kChunksPerBatch = 32, kBatch = kChunk * kChunksPerBatch;
   const int words = packed_words(d);
   struct Chunk {
-    std::vector<std::uint32_t> keys, facets;
+    std::vector<std::uint32_t> keys, facets, ids;
     std::vector<std::uint64_t> hashes;
+    std::size_t offset = 0;  // of its incidences
   };
   CellLevel level;
   level.simplices = PackedKeyIndex(words);
   level.simplices.reserve(prev.size());
-  std::vector<std::uint64_t> incidences;
-  std::vector<Chunk> chunks(kChunksPerBatch);
-  for (std::uint32_t first = 0; first < prev.size(); first += kChunk * kChunksPerBatch) {
-    const std::uint32_t last = std::min<std::uint64_t>(prev.size(), std::uint64_t{first} + kChunk * kChunksPerBatch);
-    const std::size_t n = (last - first + kChunk - 1) / kChunk;
-    pool.run(n, [&](std::size_t t, int) {
-      Chunk& out = chunks[t];
-      out.keys.clear(), out.facets.clear(), out.hashes.clear();
-      CofaceEnumerator cofaces;
-      std::uint32_t key[packed_words(kMaxDimension)];
-      const std::uint32_t a = first + static_cast<std::uint32_t>(t) * kChunk, b = std::min(last, a + kChunk);
-      for (std::uint32_t c = a; c < b; ++c) {
-        cofaces.reset(prev.simplices.simplex(c, d), l);
-        while (const Simplex* nu = cofaces.next()) {
-          pack(*nu, key);
-          out.keys.insert(out.keys.end(), key, key + words);
-          out.hashes.push_back(hash_words(key, words));
-          out.facets.push_back(c);
-        }
-      }
-    });
-    constexpr std::size_t kAhead = 8;
-    for (std::size_t t = 0; t < n; ++t) {
-      const Chunk& in = chunks[t];
-      for (std::size_t r = 0; r < in.hashes.size(); ++r) {
-        if (r + kAhead < in.hashes.size()) level.simplices.prefetch(in.hashes[r + kAhead]);
-        const std::uint32_t id = level.simplices.insert(in.keys.data() + r * words, in.hashes[r]).first;
-        incidences.push_back((static_cast<std::uint64_t>(id) << 32) | in.facets[r]);
+  std::vector<std::uint64_t> incidences;  // (cell << 32) | facet, in discovery order
+  std::vector<Chunk> buffers[3];
+  for (auto& b : buffers) b.resize(kChunksPerBatch);
+  const std::int64_t batches = (prev.size() + kBatch - 1) / kBatch;
+  const auto chunks_of = [&](std::int64_t batch) -> std::size_t {
+    if (batch < 0 || batch >= batches) return 0;
+    return (std::min<std::uint64_t>(prev.size(), (batch + 1) * kBatch) - batch * kBatch + kChunk - 1) / kChunk;
+  };
+  const auto enumerate = [&](std::int64_t batch, std::size_t t) {
+    Chunk& out = buffers[batch % 3][t];
+    out.keys.clear(), out.facets.clear(), out.hashes.clear();
+    CofaceEnumerator cofaces;
+    std::uint32_t key[packed_words(kMaxDimension)];
+    const std::uint32_t a = static_cast<std::uint32_t>(batch * kBatch + t * kChunk);
+    const std::uint32_t b = std::min(prev.size(), a + kChunk);
+    for (std::uint32_t c = a; c < b; ++c) {
+      cofaces.reset(prev.simplices.simplex(c, d), l);
+      while (const Simplex* nu = cofaces.next()) {
+        pack(*nu, key);
+        out.keys.insert(out.keys.end(), key, key + words);
+        out.hashes.push_back(hash_words(key, words));
+        out.facets.push_back(c);
       }
     }
+    out.ids.resize(out.hashes.size());
+  };
+  std::vector<KeyRun> runs;
+  const auto number = [&](std::int64_t batch) {
+    runs.clear();
+    for (std::size_t t = 0; t < chunks_of(batch); ++t) {
+      Chunk& c = buffers[batch % 3][t];
+      runs.push_back({c.keys.data(), c.hashes.data(), c.hashes.size(), c.ids.data()});
+    }
+    level.simplices.insert_runs(runs);
+  };
+  const auto write_out = [&](std::int64_t batch, std::size_t t) {
+    const Chunk& in = buffers[batch % 3][t];
+    for (std::size_t r = 0; r < in.ids.size(); ++r)
+      incidences[in.offset + r] = (static_cast<std::uint64_t>(in.ids[r] & ~PackedKeyIndex::kNewBit) << 32) | in.facets[r];
+  };
+  for (std::int64_t round = 0; round <= batches + 1; ++round) {
+    const std::int64_t numbered = round - 1, written = round - 2;
+    for (std::size_t t = 0; t < chunks_of(written); ++t) {
+      Chunk& c = buffers[written % 3][t];
+      c.offset = incidences.size();
+      incidences.resize(incidences.size() + c.ids.size());
+    }
+    const std::size_t n_number = chunks_of(numbered) > 0 ? 1 : 0, n_enumerate = chunks_of(round);
+    pool.run(n_number + n_enumerate + chunks_of(written), [&](std::size_t t, int) {
+      if (t < n_number) return number(numbered);
+      if (t < n_number + n_enumerate) return enumerate(round, t - n_number);
+      write_out(written, t - n_number - n_enumerate);
+    });
   }
   set_facets(level, incidences);
   return level;
-}
-
-CellLevel make_level(const CellLevel& prev, int d, int l, WorkerPool* pool) {
-  return pool ? next_level_parallel(prev, d, l, *pool) : next_level(prev, d, l);
 }
 
 }  // namespace
@@ -101,7 +108,7 @@ std::size_t CellComplex::bytes() const {
 
 CellComplex build_cell_complex(TraceResult&& trace, int threads) {
   const int workers = resolve_threads(threads);
-  const std::unique_ptr<WorkerPool> pool = workers > 1 ? std::make_unique<WorkerPool>(workers) : nullptr;
+  WorkerPool pool(workers);
   CellComplex cc;
   const int d = trace.ambient_dimension, k = trace.codimension, m = d - k;
   cc.ambient_dimension = d;
@@ -118,8 +125,8 @@ CellComplex build_cell_complex(TraceResult&& trace, int threads) {
     cc.boundary_vertices = std::move(trace.boundary_points);
   }
   for (int j = 1; j <= m; ++j) {
-    cc.interior.push_back(make_level(cc.interior[j - 1], d, k + j, pool.get()));
-    if (has_boundary && j <= m - 1) cc.boundary.push_back(make_level(cc.boundary[j - 1], d, k + 1 + j, pool.get()));
+    cc.interior.push_back(next_level(cc.interior[j - 1], d, k + j, pool));
+    if (has_boundary && j <= m - 1) cc.boundary.push_back(next_level(cc.boundary[j - 1], d, k + 1 + j, pool));
   }
   if (!has_boundary) cc.boundary.resize(std::max(m, 0));  // empty levels, uniform shape
   if (has_boundary)

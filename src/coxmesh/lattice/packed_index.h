@@ -1,10 +1,15 @@
 // Compact storage of lattice objects (vertices, packed simplices): a hash index from fixed-width
 // keys of 32-bit words to dense ids 0, 1, 2, … in insertion order (deterministic output order).
-// Open addressing with linear probing; each slot holds 32 bits of the hash and the id, so probes
-// compare keys only on a hash match. Keys live contiguously in one array: no node per entry.
+// Open addressing with linear probing; each slot holds the top 32 bits of the hash and the id, so
+// probes compare keys only on a hash match. A key's home slot is given by the top bits of its hash
+// (the leading bits of the stored 32), so growing the table moves slots without reading or
+// rehashing a single key, in one mostly sequential pass. Keys live contiguously in one array: no
+// node per entry.
 #pragma once
 
 #include <algorithm>
+#include <bit>
+#include <span>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -13,9 +18,20 @@
 
 namespace coxmesh {
 
+/// A run of keys to insert in order, e.g. what one task of a parallel loop produced: `size` keys of
+/// words() words each, their hash_words, and where insert_runs writes each key's id.
+struct KeyRun {
+  const std::uint32_t* keys;
+  const std::uint64_t* hashes;
+  std::size_t size;
+  std::uint32_t* ids;
+};
+
 class PackedKeyIndex {
  public:
   static constexpr std::uint32_t kAbsent = 0xFFFFFFFFu;
+  static constexpr std::uint32_t kMaxEntries = (1u << 31) - 1;  ///< at load ≤ 1/2, ≤ 2^32 slots: tags give every home bit
+  static constexpr std::uint32_t kNewBit = 1u << 31;  ///< insert_runs: marks the occurrence that inserted a key
 
   /// `words` = key width in 32-bit words (e.g. d for lattice vertices, packed_words(d) for simplices).
   explicit PackedKeyIndex(int words = 1) : words_(words) { rehash(16); }
@@ -27,7 +43,7 @@ class PackedKeyIndex {
   /// Id of the key, or kAbsent.
   std::uint32_t find(const std::uint32_t* key, std::uint64_t hash) const {
     const std::uint32_t tag = static_cast<std::uint32_t>(hash >> 32);
-    for (std::size_t s = hash & mask_;; s = (s + 1) & mask_) {
+    for (std::size_t s = home(tag);; s = (s + 1) & mask_) {
       const std::uint64_t slot = slots_[s];
       if (slot == 0) return kAbsent;
       if (static_cast<std::uint32_t>(slot >> 32) == tag && equal(static_cast<std::uint32_t>(slot) - 1, key))
@@ -39,7 +55,7 @@ class PackedKeyIndex {
   /// find() that also reports where an absent key would go, for insert_at().
   std::uint32_t find(const std::uint32_t* key, std::uint64_t hash, std::size_t& slot) const {
     const std::uint32_t tag = static_cast<std::uint32_t>(hash >> 32);
-    for (slot = hash & mask_;; slot = (slot + 1) & mask_) {
+    for (slot = home(tag);; slot = (slot + 1) & mask_) {
       const std::uint64_t entry = slots_[slot];
       if (entry == 0) return kAbsent;
       if (static_cast<std::uint32_t>(entry >> 32) == tag && equal(static_cast<std::uint32_t>(entry) - 1, key))
@@ -48,7 +64,7 @@ class PackedKeyIndex {
   }
   /// Inserts an absent key at the slot find() reported, with no insert in between; returns its id.
   std::uint32_t insert_at(std::size_t slot, const std::uint32_t* key, std::uint64_t hash) {
-    if (size_ + 1 >= kAbsent) throw InputError("more than 2^32 - 2 entries in one index");
+    if (size_ >= kMaxEntries) throw InputError("more than 2^31 - 1 entries in one index");
     const std::uint32_t id = size_++;
     keys_.insert(keys_.end(), key, key + words_);
     slots_[slot] = (hash >> 32 << 32) | (id + 1);
@@ -59,7 +75,7 @@ class PackedKeyIndex {
   /// {id, true} if the key was inserted, {existing id, false} if it was there.
   std::pair<std::uint32_t, bool> insert(const std::uint32_t* key, std::uint64_t hash) {
     const std::uint32_t tag = static_cast<std::uint32_t>(hash >> 32);
-    std::size_t s = hash & mask_;
+    std::size_t s = home(tag);
     for (;; s = (s + 1) & mask_) {
       const std::uint64_t slot = slots_[s];
       if (slot == 0) break;
@@ -69,6 +85,19 @@ class PackedKeyIndex {
     return {insert_at(s, key, hash), true};
   }
   std::pair<std::uint32_t, bool> insert(const std::uint32_t* key) { return insert(key, hash_words(key, words_)); }
+
+  /// Inserts the keys of the runs, run after run and in order within each run (the ids of insert()
+  /// on each in turn), with the table slots prefetched a few keys ahead: ids[r] = the key's id,
+  /// | kNewBit where this occurrence inserted it.
+  void insert_runs(std::span<const KeyRun> runs) {
+    constexpr std::size_t kAhead = 8;
+    for (const KeyRun& run : runs)
+      for (std::size_t i = 0; i < run.size; ++i) {
+        if (i + kAhead < run.size) prefetch(run.hashes[i + kAhead]);
+        const auto [id, fresh] = insert(run.keys + i * words_, run.hashes[i]);
+        run.ids[i] = fresh ? id | kNewBit : id;
+      }
+  }
 
   /// Simplex convenience: packs and hashes once.
   std::uint32_t find(const Simplex& s) const {
@@ -85,7 +114,7 @@ class PackedKeyIndex {
 
   /// Hints the cache to load the first slot probed for this hash (batched inserts with hashes
   /// computed ahead).
-  void prefetch(std::uint64_t hash) const { __builtin_prefetch(slots_.data() + (hash & mask_)); }
+  void prefetch(std::uint64_t hash) const { __builtin_prefetch(slots_.data() + home(static_cast<std::uint32_t>(hash >> 32))); }
 
   /// Removes every key; keeps the memory for reuse.
   void clear() {
@@ -98,6 +127,7 @@ class PackedKeyIndex {
   /// Bytes held (keys and slots), for memory reports.
   std::size_t bytes() const { return keys_.capacity() * 4 + slots_.capacity() * 8; }
   void reserve(std::size_t n) {
+    if (n > kMaxEntries) throw InputError("more than 2^31 - 1 entries in one index");
     keys_.reserve(n * words_);
     std::size_t cap = slots_.size();
     while (cap < 2 * n + 2) cap *= 2;
@@ -111,20 +141,27 @@ class PackedKeyIndex {
     for (int i = 0; i < words_; ++i) diff |= a[i] ^ key[i];
     return diff == 0;
   }
+  // Home slot of a hash tag: its leading log2(capacity) bits (capacity ≤ 2^32).
+  std::size_t home(std::uint32_t tag) const { return static_cast<std::size_t>(tag) >> shift_; }
+  // Slots are moved by their tags alone. Home slots keep their order when the table doubles, so
+  // a pass in slot order writes the new table almost sequentially.
   void rehash(std::size_t capacity) {
-    slots_.assign(capacity, 0);
+    std::vector<std::uint64_t> old(capacity, 0);
+    old.swap(slots_);
     mask_ = capacity - 1;
-    for (std::uint32_t id = 0; id < size_; ++id) {
-      const std::uint64_t h = hash_words(key(id), words_);
-      std::size_t s = h & mask_;
+    shift_ = 32 - std::countr_zero(capacity);
+    for (const std::uint64_t slot : old) {
+      if (slot == 0) continue;
+      std::size_t s = home(static_cast<std::uint32_t>(slot >> 32));
       while (slots_[s] != 0) s = (s + 1) & mask_;
-      slots_[s] = (static_cast<std::uint64_t>(static_cast<std::uint32_t>(h >> 32)) << 32) | (id + 1);
+      slots_[s] = slot;
     }
   }
 
   int words_;
   std::uint32_t size_ = 0;
   std::size_t mask_ = 0;
+  int shift_ = 32;
   std::vector<std::uint32_t> keys_;
   std::vector<std::uint64_t> slots_;
 };

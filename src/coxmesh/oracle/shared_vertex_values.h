@@ -29,7 +29,7 @@ class SharedVertexValues {
   /// evaluate(out) first if no thread has stored them yet. Returns true when evaluate was called.
   template <class Evaluate>
   bool get(const std::int32_t* v, std::uint64_t hash, double* out, Evaluate&& evaluate) {
-    Shard& s = shards_[hash >> 58];
+    Shard& s = shards_[hash & 63];  // (low bits: the shard's index places keys by the top ones)
     std::lock_guard<std::mutex> lock(s.mutex);
     const auto [id, inserted] = s.index.insert(reinterpret_cast<const std::uint32_t*>(v), hash);
     double* stored;

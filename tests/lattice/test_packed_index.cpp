@@ -1,0 +1,84 @@
+// PackedKeyIndex: growth by tags alone, and ordered batch insertion giving exactly the ids of
+// inserting the keys one after the other.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "coxmesh/lattice/packed_index.h"
+
+using namespace coxmesh;
+
+namespace {
+
+// `n` keys of `words` words drawn from `distinct` possible ones (many repeats), in runs of random size.
+struct Batch {
+  std::vector<std::vector<std::uint32_t>> keys;
+  std::vector<std::vector<std::uint64_t>> hashes;
+  std::vector<std::vector<std::uint32_t>> ids;
+  std::vector<KeyRun> runs() {
+    std::vector<KeyRun> r;
+    for (std::size_t c = 0; c < keys.size(); ++c)
+      r.push_back({keys[c].data(), hashes[c].data(), hashes[c].size(), ids[c].data()});
+    return r;
+  }
+};
+
+Batch make_batch(std::mt19937_64& rng, int words, std::size_t n, std::uint32_t distinct) {
+  Batch b;
+  std::uniform_int_distribution<std::uint32_t> pick(0, distinct - 1);
+  for (std::size_t done = 0; done < n;) {
+    const std::size_t size = std::min<std::size_t>(n - done, rng() % 3000);  // empty runs too
+    b.keys.emplace_back(), b.hashes.emplace_back(), b.ids.emplace_back(size, 0xDEADBEEFu);
+    for (std::size_t i = 0; i < size; ++i) {
+      const std::uint32_t v = pick(rng);
+      for (int w = 0; w < words; ++w) b.keys.back().push_back(v * 2654435761u + static_cast<std::uint32_t>(w));
+      b.hashes.back().push_back(hash_words(b.keys.back().data() + i * words, words));
+    }
+    done += size;
+  }
+  return b;
+}
+
+}  // namespace
+
+TEST(PackedKeyIndex, GrowthKeepsEveryKey) {
+  PackedKeyIndex index(3);
+  std::vector<std::uint32_t> key(3);
+  for (std::uint32_t i = 0; i < 100000; ++i) {
+    key = {i, i ^ 0x5555u, 7};
+    ASSERT_EQ(index.insert(key.data()), std::make_pair(i, true));
+  }
+  for (std::uint32_t i = 0; i < 100000; ++i) {
+    key = {i, i ^ 0x5555u, 7};
+    ASSERT_EQ(index.find(key.data()), i);
+    key[2] = 8;
+    ASSERT_EQ(index.find(key.data()), PackedKeyIndex::kAbsent);
+  }
+}
+
+// Against one insert() after the other, from a table already holding some of the keys.
+TEST(PackedKeyIndex, InsertRunsGivesTheIdsOfSequentialInsertion) {
+  std::mt19937_64 rng(12);
+  for (int words : {1, 4, 9})
+    for (std::size_t n : {std::size_t{100}, std::size_t{9000}, std::size_t{60000}}) {
+      const std::uint32_t distinct = static_cast<std::uint32_t>(n / 2 + 1);
+      Batch before = make_batch(rng, words, n / 3, distinct), batch = make_batch(rng, words, n, distinct);
+      PackedKeyIndex expected(words), actual(words);
+      for (auto* index : {&expected, &actual}) index->insert_runs(before.runs());
+      std::vector<std::vector<std::uint32_t>> expected_ids;
+      for (std::size_t c = 0; c < batch.keys.size(); ++c) {
+        expected_ids.emplace_back();
+        for (std::size_t i = 0; i < batch.hashes[c].size(); ++i) {
+          const auto [id, fresh] = expected.insert(batch.keys[c].data() + i * words, batch.hashes[c][i]);
+          expected_ids.back().push_back(fresh ? id | PackedKeyIndex::kNewBit : id);
+        }
+      }
+      actual.insert_runs(batch.runs());
+      ASSERT_EQ(actual.size(), expected.size());
+      ASSERT_EQ(batch.ids, expected_ids) << words << " words, " << n << " keys";
+      for (std::uint32_t id = 0; id < actual.size(); ++id) {
+        ASSERT_TRUE(std::equal(actual.key(id), actual.key(id) + words, expected.key(id)));
+        ASSERT_EQ(actual.find(actual.key(id)), id);
+      }
+    }
+}
