@@ -2,6 +2,7 @@
 #include "coxmesh/cell_complex/cell_complex.h"
 
 #include "coxmesh/lattice/cofaces.h"
+#include "coxmesh/util/huge_page_allocator.h"
 #include "coxmesh/util/parallel_for.h"
 
 namespace coxmesh {
@@ -10,7 +11,7 @@ namespace {
 
 // Facet lists from the incidences (cell << 32) | facet: a counting sort by cell keeps each cell's
 // facets in increasing order.
-void set_facets(CellLevel& level, const std::vector<std::uint64_t>& incidences) {
+void set_facets(CellLevel& level, const HugeVector<std::uint64_t>& incidences) {
   level.facet_offsets.assign(level.size() + 1, 0);
   for (std::uint64_t e : incidences) ++level.facet_offsets[(e >> 32) + 1];
   for (std::uint32_t c = 0; c < level.size(); ++c) level.facet_offsets[c + 1] += level.facet_offsets[c];
@@ -38,7 +39,7 @@ CellLevel next_level(const CellLevel& prev, int d, int l, WorkerPool& pool) {
   CellLevel level;
   level.simplices = PackedKeyIndex(words);
   level.simplices.reserve(prev.size());
-  std::vector<std::uint64_t> incidences;  // (cell << 32) | facet, in discovery order
+  HugeVector<std::uint64_t> incidences;  // (cell << 32) | facet, in discovery order
   std::vector<Chunk> buffers[3];
   for (auto& b : buffers) b.resize(kChunksPerBatch);
   const std::int64_t batches = (prev.size() + kBatch - 1) / kBatch;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "coxmesh/lattice/simplex.h"
+#include "coxmesh/util/huge_page_allocator.h"
 
 namespace coxmesh {
 
@@ -90,10 +91,16 @@ class PackedKeyIndex {
   /// on each in turn), with the table slots prefetched a few keys ahead: ids[r] = the key's id,
   /// | kNewBit where this occurrence inserted it.
   void insert_runs(std::span<const KeyRun> runs) {
-    constexpr std::size_t kAhead = 8;
+    constexpr std::size_t kAhead = 16;  // keys ahead, across the ends of runs (runs may be short)
+    std::size_t ahead_run = 0, ahead = 0;
+    const auto prefetch_next = [&] {
+      while (ahead_run < runs.size() && ahead >= runs[ahead_run].size) ++ahead_run, ahead = 0;
+      if (ahead_run < runs.size()) prefetch(runs[ahead_run].hashes[ahead++]);
+    };
+    for (std::size_t k = 0; k < kAhead; ++k) prefetch_next();
     for (const KeyRun& run : runs)
       for (std::size_t i = 0; i < run.size; ++i) {
-        if (i + kAhead < run.size) prefetch(run.hashes[i + kAhead]);
+        prefetch_next();
         const auto [id, fresh] = insert(run.keys + i * words_, run.hashes[i]);
         run.ids[i] = fresh ? id | kNewBit : id;
       }
@@ -146,7 +153,7 @@ class PackedKeyIndex {
   // Slots are moved by their tags alone. Home slots keep their order when the table doubles, so
   // a pass in slot order writes the new table almost sequentially.
   void rehash(std::size_t capacity) {
-    std::vector<std::uint64_t> old(capacity, 0);
+    HugeVector<std::uint64_t> old(capacity, 0);
     old.swap(slots_);
     mask_ = capacity - 1;
     shift_ = 32 - std::countr_zero(capacity);
@@ -162,8 +169,8 @@ class PackedKeyIndex {
   std::uint32_t size_ = 0;
   std::size_t mask_ = 0;
   int shift_ = 32;
-  std::vector<std::uint32_t> keys_;
-  std::vector<std::uint64_t> slots_;
+  HugeVector<std::uint32_t> keys_;
+  HugeVector<std::uint64_t> slots_;
 };
 
 }  // namespace coxmesh

@@ -9,6 +9,7 @@
 
 #include "coxmesh/lattice/cofaces.h"
 #include "coxmesh/lattice/faces.h"
+#include "coxmesh/util/huge_page_allocator.h"
 #include "coxmesh/util/parallel_for.h"
 
 namespace coxmesh {
@@ -116,6 +117,7 @@ class Tracer {
   struct ChunkOutput {
     std::vector<std::uint32_t> inside_keys, boundary_keys;
     std::vector<std::uint64_t> inside_hashes, inside_arrivals;
+    std::vector<std::uint32_t> ids;  // merge: the S id of each inside simplex (| kNewBit if new)
     std::vector<double> inside_data, boundary_points;
     void clear() {
       inside_keys.clear(), boundary_keys.clear(), inside_hashes.clear(), inside_arrivals.clear(), inside_data.clear(),
@@ -134,15 +136,15 @@ class Tracer {
   void walk_parallel();
   void process_chunk(std::uint32_t begin, std::uint32_t end, Worker& worker, ChunkOutput& out);
   Found classify_in_level(const Simplex& tau, Worker& worker, ChunkOutput& out);
-  void merge(const ChunkOutput& out);
+  void merge(std::size_t n_chunks);
 
   const Triangulation& t_;
   IntersectionOracle& oracle_;  // the first worker's; seeds and the sequential walk use it
   const TraceOptions& options_;
   const int d_, k_;
   TraceResult result_;
-  std::vector<double> domain_values_;  // D̂ at each point of S
-  std::vector<std::uint64_t> arrivals_;  // per simplex of S: the cofacet it was discovered through
+  HugeVector<double> domain_values_;  // D̂ at each point of S
+  HugeVector<std::uint64_t> arrivals_;  // per simplex of S: the cofacet it was discovered through
   PackedKeyIndex others_;
   std::vector<std::uint32_t> other_payload_;  // kMiss, kOutsideBox or index into outside_
   std::vector<double> outside_;               // (d + 1) per transverse simplex outside: point, D̂
@@ -152,6 +154,7 @@ class Tracer {
   std::vector<double> point_;
   std::vector<Worker> workers_;
   std::vector<ChunkOutput> chunks_;
+  std::vector<KeyRun> runs_;
   std::unique_ptr<WorkerPool> pool_;  // started by the first parallel level
   std::atomic<bool> box_reached_{false};
 };
@@ -257,7 +260,7 @@ void Tracer::walk_parallel() {
       const std::uint32_t a = begin + static_cast<std::uint32_t>(c) * chunk;
       process_chunk(a, std::min(end, a + chunk), workers_[worker], chunks_[c]);
     });
-    for (std::size_t c = 0; c < n; ++c) merge(chunks_[c]);
+    merge(n);
     if (box_reached_.load()) result_.status = TraceStatus::box_reached;
     head_ = end;
   }
@@ -331,24 +334,35 @@ void Tracer::process_chunk(std::uint32_t begin, std::uint32_t end, Worker& worke
   }
 }
 
-void Tracer::merge(const ChunkOutput& out) {
-  const int words = packed_words(d_);
-  constexpr std::size_t kAhead = 8;  // hashes are known: prefetch the table slots
-  const std::size_t n = out.inside_hashes.size();
-  for (std::size_t r = 0; r < n; ++r) {
-    if (r + kAhead < n) result_.simplices.prefetch(out.inside_hashes[r + kAhead]);
-    if (result_.simplices.insert(out.inside_keys.data() + r * words, out.inside_hashes[r]).second) {
+// Appends the level's discoveries to S in chunk order (the first occurrence of a simplex wins, as in
+// the sequential walk): one ordered batch insertion over all chunks, prefetched across chunks.
+void Tracer::merge(std::size_t n_chunks) {
+  runs_.clear();
+  for (std::size_t c = 0; c < n_chunks; ++c) {
+    ChunkOutput& out = chunks_[c];
+    out.ids.resize(out.inside_hashes.size());
+    runs_.push_back({out.inside_keys.data(), out.inside_hashes.data(), out.inside_hashes.size(), out.ids.data()});
+  }
+  result_.simplices.insert_runs(runs_);
+  for (std::size_t c = 0; c < n_chunks; ++c) {
+    const ChunkOutput& out = chunks_[c];
+    for (std::size_t r = 0; r < out.ids.size(); ++r) {
+      if (!(out.ids[r] & PackedKeyIndex::kNewBit)) continue;
       const double* p = out.inside_data.data() + r * (d_ + 1);
       result_.points.insert(result_.points.end(), p, p + d_);
       domain_values_.push_back(p[d_]);
       arrivals_.push_back(out.inside_arrivals[r]);
     }
   }
-  for (std::size_t r = 0; r * words < out.boundary_keys.size(); ++r)
-    if (result_.boundary_simplices.insert(out.boundary_keys.data() + r * words).second) {
-      const double* p = out.boundary_points.data() + r * d_;
-      result_.boundary_points.insert(result_.boundary_points.end(), p, p + d_);
-    }
+  const int words = packed_words(d_);
+  for (std::size_t c = 0; c < n_chunks; ++c) {
+    const ChunkOutput& out = chunks_[c];
+    for (std::size_t r = 0; r * words < out.boundary_keys.size(); ++r)
+      if (result_.boundary_simplices.insert(out.boundary_keys.data() + r * words).second) {
+        const double* p = out.boundary_points.data() + r * d_;
+        result_.boundary_points.insert(result_.boundary_points.end(), p, p + d_);
+      }
+  }
 }
 
 void Tracer::add_seed(std::span<const double> seed, bool must_succeed) {
