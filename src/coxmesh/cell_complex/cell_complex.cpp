@@ -29,7 +29,11 @@ void set_facets(CellLevel& level, const HugeVector<std::uint64_t>& incidences) {
 // three sets of buffers; the numbering task comes first, so it starts at once. The result is the
 // same for any number of workers; batches bound the extra memory.
 CellLevel next_level(const CellLevel& prev, int d, int l, WorkerPool& pool) {
-  constexpr std::uint32_t kChunk = 256, kChunksPerBatch = 32, kBatch = kChunk * kChunksPerBatch;
+  // Batches of up to 8192 cells, and at most 1/32 of the level: the three sets of buffers stay a
+  // small part of the memory of the complex.
+  constexpr std::uint32_t kChunk = 256, kMaxChunksPerBatch = 32;
+  const std::uint32_t chunks_per_batch = std::clamp<std::uint32_t>(prev.size() / (32 * kChunk), 1, kMaxChunksPerBatch);
+  const std::uint32_t batch_cells = kChunk * chunks_per_batch;
   const int words = packed_words(d);
   struct Chunk {
     std::vector<std::uint32_t> keys, facets, ids;
@@ -41,18 +45,18 @@ CellLevel next_level(const CellLevel& prev, int d, int l, WorkerPool& pool) {
   level.simplices.reserve(prev.size());
   HugeVector<std::uint64_t> incidences;  // (cell << 32) | facet, in discovery order
   std::vector<Chunk> buffers[3];
-  for (auto& b : buffers) b.resize(kChunksPerBatch);
-  const std::int64_t batches = (prev.size() + kBatch - 1) / kBatch;
+  for (auto& b : buffers) b.resize(chunks_per_batch);
+  const std::int64_t batches = (prev.size() + batch_cells - 1) / batch_cells;
   const auto chunks_of = [&](std::int64_t batch) -> std::size_t {
     if (batch < 0 || batch >= batches) return 0;
-    return (std::min<std::uint64_t>(prev.size(), (batch + 1) * kBatch) - batch * kBatch + kChunk - 1) / kChunk;
+    return (std::min<std::uint64_t>(prev.size(), (batch + 1) * batch_cells) - batch * batch_cells + kChunk - 1) / kChunk;
   };
   const auto enumerate = [&](std::int64_t batch, std::size_t t) {
     Chunk& out = buffers[batch % 3][t];
     out.keys.clear(), out.facets.clear(), out.hashes.clear();
     CofaceEnumerator cofaces;
     std::uint32_t key[packed_words(kMaxDimension)];
-    const std::uint32_t a = static_cast<std::uint32_t>(batch * kBatch + t * kChunk);
+    const std::uint32_t a = static_cast<std::uint32_t>(batch * batch_cells + t * kChunk);
     const std::uint32_t b = std::min(prev.size(), a + kChunk);
     for (std::uint32_t c = a; c < b; ++c) {
       cofaces.reset(prev.simplices.simplex(c, d), l);
