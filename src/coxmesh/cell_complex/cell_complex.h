@@ -40,8 +40,9 @@ struct CellComplex {
 /// Builds the cell complex level by level (spec §2.4): the cells of dimension j are the
 /// (k+j)-cofaces of the simplices of the cells of dimension j − 1; each coface found from a cell
 /// records that cell as a facet. Consumes the trace result (its indices become level 0).
-/// With threads ≠ 1 (0 = all hardware threads) the cofaces are enumerated in parallel batches and
-/// numbered in the same order: the complex is identical for every thread count.
+/// `threads` workers (0 = all hardware threads) run batches of cells through a pipeline: cofaces
+/// enumerated in parallel, numbered in order by one task, incidences written out in parallel. The
+/// complex, numbering included, is identical for every thread count.
 CellComplex build_cell_complex(TraceResult&& trace, int threads = 1);
 
 }  // namespace coxmesh
