@@ -1,11 +1,13 @@
 // Multi-threaded tracing gives the same result, order and bits included, for every thread count,
 // equal to the sequential walk's; also when a limit or a box truncates the walk.
-// The cell complex built with several threads is identical too, cell numbering included.
+// The cell complex built with several threads is identical too, cell numbering included, and
+// equal to a plain reference construction (one coface inserted after the other).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 
 #include "coxmesh/cell_complex/cell_complex.h"
+#include "coxmesh/lattice/cofaces.h"
 #include "coxmesh/oracle/implicit_oracle.h"
 #include "coxmesh/tracing/trace_manifold.h"
 #include "expect_identical.h"
@@ -21,6 +23,25 @@ struct Case {
   TraceOptions options;
   std::vector<double> seed;
 };
+
+// Spec §2.4 the plain way: level j numbers the l-cofaces of level j − 1's cells in order of
+// discovery; each cell's facets in increasing order.
+struct ReferenceLevel {
+  PackedKeyIndex simplices;
+  std::vector<std::vector<std::uint32_t>> facets;
+};
+ReferenceLevel reference_level(const PackedKeyIndex& prev, int d, int l) {
+  ReferenceLevel level{PackedKeyIndex(packed_words(d)), {}};
+  for (std::uint32_t c = 0; c < prev.size(); ++c) {
+    CofaceEnumerator cofaces(prev.simplex(c, d), l);
+    for (Simplex nu; cofaces.next(nu);) {
+      const auto [id, fresh] = level.simplices.insert(nu);
+      if (fresh) level.facets.emplace_back();
+      level.facets[id].push_back(c);
+    }
+  }
+  return level;
+}
 
 }  // namespace
 
@@ -105,6 +126,23 @@ TEST(ParallelCellComplex, IdenticalForEveryThreadCount) {
     std::size_t cells = 0;
     for (const CellLevel& l : one.interior) cells += l.size();
     EXPECT_GT(cells, 20000u);  // several batches of the parallel construction
+    const int d = c.t.dimension(), k = c.f->codimension();
+    for (const auto* levels : {&one.interior, &one.boundary}) {
+      const int first = levels == &one.interior ? k : k + 1;  // dimension of the level-0 simplices
+      for (std::size_t j = 1; j < levels->size(); ++j) {
+        const ReferenceLevel ref = reference_level((*levels)[j - 1].simplices, d, first + static_cast<int>(j));
+        const CellLevel& got = (*levels)[j];
+        ASSERT_EQ(got.size(), ref.simplices.size()) << j;
+        for (std::uint32_t cell = 0; cell < got.size(); ++cell) {
+          ASSERT_TRUE(std::equal(got.simplices.key(cell), got.simplices.key(cell) + got.simplices.words(),
+                                 ref.simplices.key(cell)))
+              << "level " << j << " cell " << cell;
+          const auto facets = got.facets(cell);
+          ASSERT_TRUE(std::equal(facets.begin(), facets.end(), ref.facets[cell].begin(), ref.facets[cell].end()))
+              << "level " << j << " cell " << cell;
+        }
+      }
+    }
     for (int threads : {2, 3, 4}) {
       const CellComplex many = build_cell_complex(TraceResult(traced), threads);
       ASSERT_EQ(one.interior.size(), many.interior.size());
