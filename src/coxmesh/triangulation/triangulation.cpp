@@ -382,10 +382,14 @@ Simplex locate_impl(const Triangulation& t, const double* padded_inverse, const 
 }
 
 // d > 12: compiled for AVX2 and for the baseline, chosen once at load time (the matrix–vector
-// product is most of the work there); everything it calls is inlined into each version.
-[[gnu::target_clones("avx2", "default"), gnu::flatten]] Simplex locate_large(const Triangulation& t,
-                                                                             const double* padded_inverse,
-                                                                             const double* x) {
+// product is most of the work there); everything it calls is inlined into each version. Not under
+// ThreadSanitizer: the load-time chooser (an ifunc resolver) would run before its runtime and crash.
+#if defined(__SANITIZE_THREAD__)
+[[gnu::flatten]]
+#else
+[[gnu::target_clones("avx2", "default"), gnu::flatten]]
+#endif
+Simplex locate_large(const Triangulation& t, const double* padded_inverse, const double* x) {
   return locate_impl<0>(t, padded_inverse, x);
 }
 
