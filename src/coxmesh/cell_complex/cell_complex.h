@@ -14,11 +14,11 @@ namespace coxmesh {
 struct CellLevel {
   static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
   PackedKeyIndex simplices{1};              ///< ambient simplex of each cell; id = cell id
-  std::vector<std::uint32_t> facet_offsets{0};  ///< CSR: facets of c are facet_ids[offsets[c] .. offsets[c+1])
-  std::vector<std::uint32_t> facet_ids;     ///< cells of dimension j − 1 of the same kind
+  HugeVector<std::uint32_t> facet_offsets{0};   ///< CSR: facets of c are facet_ids[offsets[c] .. offsets[c+1])
+  HugeVector<std::uint32_t> facet_ids;      ///< cells of dimension j − 1 of the same kind
   /// Interior cells (j ≥ 1) with a domain: the boundary cell of dimension j − 1 on the same
   /// simplex (it closes the cut polytope), or kNone. Empty without a domain.
-  std::vector<std::uint32_t> boundary_facet;
+  HugeVector<std::uint32_t> boundary_facet;
 
   std::uint32_t size() const { return simplices.size(); }
   std::span<const std::uint32_t> facets(std::uint32_t c) const {
@@ -32,7 +32,7 @@ struct CellLevel {
 struct CellComplex {
   int ambient_dimension = 0, manifold_dimension = 0;
   std::vector<CellLevel> interior, boundary;
-  std::vector<double> vertices, boundary_vertices;
+  HugeVector<double> vertices, boundary_vertices;
 
   std::size_t bytes() const;  ///< memory held, for reports
 };

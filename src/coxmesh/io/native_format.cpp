@@ -31,8 +31,8 @@ struct Reader {
   [[noreturn]] void fail(const std::string& why) const { throw InputError(name + ": " + why); }
 
   template <class T>
-  std::vector<T> array(std::size_t n, const char* what) {
-    std::vector<T> v(n);
+  HugeVector<T> array(std::size_t n, const char* what) {
+    HugeVector<T> v(n);
     if (n) in.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(n * sizeof(T)));
     if (!in) fail(std::string("truncated file (reading ") + what + ")");
     return v;

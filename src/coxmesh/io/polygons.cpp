@@ -40,7 +40,7 @@ std::uint32_t vertex_count(const CellComplex& cc) {
 }
 
 std::vector<double> vertex_coordinates(const CellComplex& cc) {
-  std::vector<double> xs = cc.vertices;
+  std::vector<double> xs(cc.vertices.begin(), cc.vertices.end());
   xs.insert(xs.end(), cc.boundary_vertices.begin(), cc.boundary_vertices.end());
   return xs;
 }

@@ -67,7 +67,7 @@ class ImplicitOracle final : public IntersectionOracle {
   std::vector<double> front_values_;
   std::vector<std::uint8_t> front_used_;
   PackedKeyIndex cache_;  // without shared_: every vertex this oracle met
-  std::vector<double> values_;  // stride_ per cached vertex: F values, then D
+  HugeVector<double> values_;  // stride_ per cached vertex: F values, then D
   std::vector<double> scratch_;
   SmallLu pivot_lu_;                        // M(τ) of the last pivot_enter
   std::array<double, SmallLu::kMaxN> pivot_lambda_;  // its barycentric solution (k = 1: F at τ's ends)

@@ -50,10 +50,10 @@ class SharedVertexValues {
   }
 
  private:
-  struct Shard {
+  struct alignas(64) Shard {
     std::mutex mutex;
     PackedKeyIndex index{1};
-    std::vector<double> values;
+    HugeVector<double> values;
   };
   int d_, stride_;
   std::array<Shard, 64> shards_;

@@ -114,7 +114,7 @@ class Tracer {
   // ---- Parallel walk (level-synchronous) ----
   // What one chunk of a level discovered, in encounter order: inside simplices (key, hash, point,
   // D̂) and boundary simplices (key, point). Merged in chunk order, so the result is deterministic.
-  struct ChunkOutput {
+  struct alignas(64) ChunkOutput {
     std::vector<std::uint32_t> inside_keys, boundary_keys;
     std::vector<std::uint64_t> inside_hashes, inside_arrivals;
     std::vector<std::uint32_t> ids;  // merge: the S id of each inside simplex (| kNewBit if new)
@@ -126,7 +126,7 @@ class Tracer {
   };
   // A worker's oracle and its memory of the simplices it tested in the current level that were not
   // in S: workers share nothing but S, which no one modifies during a level.
-  struct Worker {
+  struct alignas(64) Worker {
     IntersectionOracle* oracle;
     PackedKeyIndex tested;
     std::vector<std::uint32_t> payload;  // kMiss, kOutsideBox, or index into data

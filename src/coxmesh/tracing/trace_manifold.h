@@ -39,9 +39,9 @@ enum class TraceStatus { complete, max_simplices_reached, box_reached };
 struct TraceResult {
   int ambient_dimension = 0, codimension = 0;
   PackedKeyIndex simplices{1};           ///< S: packed k-simplices
-  std::vector<double> points;            ///< |S| × d intersection points
+  HugeVector<double> points;             ///< |S| × d intersection points
   PackedKeyIndex boundary_simplices{1};  ///< S_∂: packed (k+1)-simplices
-  std::vector<double> boundary_points;   ///< |S_∂| × d
+  HugeVector<double> boundary_points;    ///< |S_∂| × d
   TraceStatus status = TraceStatus::complete;
   std::string message;                   ///< why tracing stopped early (empty when complete)
   std::uint64_t oracle_calls = 0, function_evaluations = 0;
