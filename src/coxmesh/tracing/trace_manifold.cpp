@@ -5,6 +5,7 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <mutex>
 #include <sstream>
 
 #include "coxmesh/lattice/cofaces.h"
@@ -91,7 +92,7 @@ class Tracer {
     result_.codimension = k_;
     result_.simplices = PackedKeyIndex(packed_words(d_));
     result_.boundary_simplices = PackedKeyIndex(packed_words(d_));
-    for (IntersectionOracle* o : oracles) workers_.push_back(Worker{o, PackedKeyIndex(packed_words(d_)), {}, {}, 0});
+    for (IntersectionOracle* o : oracles) workers_.push_back(Worker{o, PackedKeyIndex(packed_words(d_)), {}, {}, {}, 0});
   }
 
   void add_seed(std::span<const double> seed, bool must_succeed);
@@ -130,12 +131,37 @@ class Tracer {
     IntersectionOracle* oracle;
     PackedKeyIndex tested;
     std::vector<std::uint32_t> payload;  // kMiss, kOutsideBox, or index into data
+    std::vector<std::uint32_t> output_in;  // per tested simplex inside: the first chunk that output it
     std::vector<double> data;            // (d + 1) per transverse simplex: point, D̂
     std::uint64_t calls;
   };
+  // Which chunks of a level are left: worker w starts at the front of its own contiguous share, so
+  // it keeps to one region of the manifold (its caches, its memory of tested simplices); a worker
+  // out of chunks takes the last chunk of the largest remaining share.
+  class ChunkClaims {
+   public:
+    void reset(std::size_t chunks, std::size_t workers) {
+      shares_.clear();
+      for (std::size_t w = 0; w < workers; ++w) shares_.push_back({chunks * w / workers, chunks * (w + 1) / workers});
+    }
+    bool claim(std::size_t share, std::size_t& chunk) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      auto& [front, back] = shares_[share];
+      if (front < back) return chunk = front++, true;
+      std::size_t largest = 0;
+      for (std::size_t w = 1; w < shares_.size(); ++w)
+        if (shares_[w].second - shares_[w].first > shares_[largest].second - shares_[largest].first) largest = w;
+      if (shares_[largest].first == shares_[largest].second) return false;
+      return chunk = --shares_[largest].second, true;
+    }
+
+   private:
+    std::mutex mutex_;
+    std::vector<std::pair<std::size_t, std::size_t>> shares_;  // [front, back) per worker
+  };
   void walk_parallel();
-  void process_chunk(std::uint32_t begin, std::uint32_t end, Worker& worker, ChunkOutput& out);
-  Found classify_in_level(const Simplex& tau, Worker& worker, ChunkOutput& out);
+  void process_chunk(std::uint32_t chunk, std::uint32_t begin, std::uint32_t end, Worker& worker, ChunkOutput& out);
+  Found classify_in_level(const Simplex& tau, std::uint32_t chunk, Worker& worker, ChunkOutput& out);
   void merge(std::size_t n_chunks);
 
   const Triangulation& t_;
@@ -154,6 +180,7 @@ class Tracer {
   std::vector<double> point_;
   std::vector<Worker> workers_;
   std::vector<ChunkOutput> chunks_;
+  ChunkClaims claims_;
   std::vector<KeyRun> runs_;
   std::unique_ptr<WorkerPool> pool_;  // started by the first parallel level
   std::atomic<bool> box_reached_{false};
@@ -253,12 +280,15 @@ void Tracer::walk_parallel() {
     const std::uint32_t chunk = std::clamp<std::uint32_t>((end - begin) / (8 * workers_.size()), 32, 4096);
     const std::size_t n = (end - begin + chunk - 1) / chunk;
     if (chunks_.size() < n) chunks_.resize(n);
-    for (Worker& w : workers_) w.tested.clear(), w.payload.clear(), w.data.clear();
+    for (Worker& w : workers_) w.tested.clear(), w.payload.clear(), w.output_in.clear(), w.data.clear();
     if (!pool_) pool_ = std::make_unique<WorkerPool>(static_cast<int>(workers_.size()));
-    pool_->run(n, [&](std::size_t c, int worker) {
-      chunks_[c].clear();
-      const std::uint32_t a = begin + static_cast<std::uint32_t>(c) * chunk;
-      process_chunk(a, std::min(end, a + chunk), workers_[worker], chunks_[c]);
+    claims_.reset(n, workers_.size());
+    pool_->run(workers_.size(), [&](std::size_t share, int worker) {
+      for (std::size_t c; claims_.claim(share, c);) {
+        chunks_[c].clear();
+        const std::uint32_t a = begin + static_cast<std::uint32_t>(c) * chunk;
+        process_chunk(static_cast<std::uint32_t>(c), a, std::min(end, a + chunk), workers_[worker], chunks_[c]);
+      }
     });
     merge(n);
     if (box_reached_.load()) result_.status = TraceStatus::box_reached;
@@ -266,16 +296,25 @@ void Tracer::walk_parallel() {
   }
 }
 
-// The parallel classify: S is read-only during a level, so discoveries go to `out` (a worker
-// takes chunks in increasing order, so its first encounter of a simplex is output first).
-Found Tracer::classify_in_level(const Simplex& tau, Worker& worker, ChunkOutput& out) {
+// The parallel classify: S is read-only during a level, so discoveries go to `out`. The merge keeps
+// the first occurrence in chunk order, so a new simplex is output by each chunk of the worker that
+// meets it before every chunk that output it so far (chunks are taken in no fixed order).
+Found Tracer::classify_in_level(const Simplex& tau, std::uint32_t chunk, Worker& worker, ChunkOutput& out) {
   const int words = packed_words(d_);
   std::uint32_t key[packed_words(kMaxDimension)];
   pack(tau, key);
   const std::uint64_t h = hash_words(key, words);
   if (std::uint32_t id = result_.simplices.find(key, h); id != PackedKeyIndex::kAbsent) return {Kind::inside, id};
   const auto [id, fresh] = worker.tested.insert(key, h);
+  const auto output = [&](const double* found) {
+    out.inside_keys.insert(out.inside_keys.end(), key, key + words);
+    out.inside_hashes.push_back(h);
+    out.inside_arrivals.push_back(kNoCofacet);  // set by process_chunk
+    out.inside_data.insert(out.inside_data.end(), found, found + d_ + 1);
+    worker.output_in[id] = chunk;
+  };
   if (fresh) {
+    worker.output_in.push_back(kMiss);
     ++worker.calls;
     double found[kMaxDimension + 1];  // point, D̂
     const Intersection x = worker.oracle->intersect(tau, found);
@@ -287,22 +326,19 @@ Found Tracer::classify_in_level(const Simplex& tau, Worker& worker, ChunkOutput&
     } else if (x.hit) {
       payload = static_cast<std::uint32_t>(worker.data.size());
       worker.data.insert(worker.data.end(), found, found + d_ + 1);
-      if (x.domain < 0) {
-        out.inside_keys.insert(out.inside_keys.end(), key, key + words);
-        out.inside_hashes.push_back(h);
-        out.inside_arrivals.push_back(kNoCofacet);  // set by process_chunk
-        out.inside_data.insert(out.inside_data.end(), found, found + d_ + 1);
-      }
+      if (x.domain < 0) output(found);
     }
     worker.payload.push_back(payload);
   }
   const std::uint32_t p = worker.payload[id];
   if (p == kMiss) return {Kind::miss, 0};
   if (p == kOutsideBox) return {Kind::clipped, 0};
-  return {worker.data[p + d_] < 0 ? Kind::inside : Kind::outside, p};
+  if (worker.data[p + d_] >= 0) return {Kind::outside, p};
+  if (chunk < worker.output_in[id]) output(worker.data.data() + p);
+  return {Kind::inside, p};
 }
 
-void Tracer::process_chunk(std::uint32_t begin, std::uint32_t end, Worker& worker, ChunkOutput& out) {
+void Tracer::process_chunk(std::uint32_t chunk, std::uint32_t begin, std::uint32_t end, Worker& worker, ChunkOutput& out) {
   const int words = packed_words(d_);
   Simplex tau;
   CofaceEnumerator cofacets;
@@ -317,7 +353,7 @@ void Tracer::process_chunk(std::uint32_t begin, std::uint32_t end, Worker& worke
       const Simplex& mu = *cofacet;
       const std::size_t known = out.inside_arrivals.size();
       const Found f = other_transverse_facet(*worker.oracle, pivots, tau, tau_key, arrivals_[id], mu,
-                                             [&](const Simplex& s) { return classify_in_level(s, worker, out); });
+                                             [&](const Simplex& s) { return classify_in_level(s, chunk, worker, out); });
       if (f.kind == Kind::inside && out.inside_arrivals.size() > known) {  // first found now, through μ
         mu.vertex(f.facet, v);
         out.inside_arrivals.back() = cofacet_code(v, out.inside_keys.data() + out.inside_keys.size() - words, d_);
