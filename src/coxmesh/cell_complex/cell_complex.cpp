@@ -11,7 +11,7 @@ namespace {
 
 // Facet lists from the incidences (cell << 32) | facet: a counting sort by cell keeps each cell's
 // facets in increasing order.
-void set_facets(CellLevel& level, const HugeVector<std::uint64_t>& incidences) {
+void set_facets(CellLevel& level, std::span<const std::uint64_t> incidences) {
   level.facet_offsets.assign(level.size() + 1, 0);
   for (std::uint64_t e : incidences) ++level.facet_offsets[(e >> 32) + 1];
   for (std::uint32_t c = 0; c < level.size(); ++c) level.facet_offsets[c + 1] += level.facet_offsets[c];
@@ -43,7 +43,7 @@ CellLevel next_level(const CellLevel& prev, int d, int l, WorkerPool& pool) {
   CellLevel level;
   level.simplices = PackedKeyIndex(words);
   level.simplices.reserve(prev.size());
-  HugeVector<std::uint64_t> incidences;  // (cell << 32) | facet, in discovery order
+  UninitializedHugeVector<std::uint64_t> incidences;  // (cell << 32) | facet, in discovery order
   std::vector<Chunk> buffers[3];
   for (auto& b : buffers) b.resize(chunks_per_batch);
   const std::int64_t batches = (prev.size() + batch_cells - 1) / batch_cells;
@@ -85,6 +85,11 @@ CellLevel next_level(const CellLevel& prev, int d, int l, WorkerPool& pool) {
   };
   for (std::int64_t round = 0; round <= batches + 1; ++round) {
     const std::int64_t numbered = round - 1, written = round - 2;
+    if (written == 0) {  // room for the whole level at batch 0's rate: no copies as it grows
+      std::size_t occurrences = 0;
+      for (std::size_t t = 0; t < chunks_of(0); ++t) occurrences += buffers[0][t].ids.size();
+      incidences.reserve(occurrences * prev.size() / std::min(prev.size(), batch_cells) * 9 / 8);
+    }
     for (std::size_t t = 0; t < chunks_of(written); ++t) {
       Chunk& c = buffers[written % 3][t];
       c.offset = incidences.size();

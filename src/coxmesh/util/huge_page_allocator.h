@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <new>
+#include <utility>
 #include <vector>
 
 namespace coxmesh {
@@ -45,5 +46,28 @@ struct HugePageAllocator {
 /// A std::vector whose big buffers use huge pages.
 template <class T>
 using HugeVector = std::vector<T, HugePageAllocator<T>>;
+
+/// The same for arrays that are written in full right after they grow: resize() leaves numbers
+/// uninitialised instead of zeroing them (zeroing a table serially cost as much as filling it).
+template <class T>
+struct UninitializedHugePageAllocator : HugePageAllocator<T> {
+  UninitializedHugePageAllocator() = default;
+  template <class U>
+  UninitializedHugePageAllocator(const UninitializedHugePageAllocator<U>&) {}
+  template <class U>
+  struct rebind {
+    using other = UninitializedHugePageAllocator<U>;
+  };
+  template <class U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+template <class T>
+using UninitializedHugeVector = std::vector<T, UninitializedHugePageAllocator<T>>;
 
 }  // namespace coxmesh
