@@ -9,15 +9,25 @@ namespace coxmesh {
 
 namespace {
 
-// Facet lists from the incidences (cell << 32) | facet: a counting sort by cell keeps each cell's
-// facets in increasing order.
-void set_facets(CellLevel& level, std::span<const std::uint64_t> incidences) {
-  level.facet_offsets.assign(level.size() + 1, 0);
-  for (std::uint64_t e : incidences) ++level.facet_offsets[(e >> 32) + 1];
-  for (std::uint32_t c = 0; c < level.size(); ++c) level.facet_offsets[c + 1] += level.facet_offsets[c];
+// Facet lists from the incidences (cell << 32) | facet, in discovery order: a counting sort by
+// cell keeps each cell's facets in increasing order. Worker p sorts the p-th range of cells: it
+// reads every incidence and skips the other ranges', so no counter is written by two workers.
+void set_facets(CellLevel& level, std::span<const std::uint64_t> incidences, WorkerPool& pool) {
+  const std::uint64_t n = level.size(), parts = static_cast<std::uint64_t>(pool.size());
+  const auto for_own_incidences = [&](std::uint64_t p, auto&& f) {
+    const std::uint64_t lo = n * p / parts, width = n * (p + 1) / parts - lo;
+    for (std::uint64_t e : incidences)
+      if ((e >> 32) - lo < width) f(e >> 32, static_cast<std::uint32_t>(e));
+  };
+  level.facet_offsets.assign(n + 1, 0);
+  std::uint32_t* count = level.facet_offsets.data() + 1;
+  pool.run(parts, [&](std::size_t p, int) { for_own_incidences(p, [&](std::uint64_t c, std::uint32_t) { ++count[c]; }); });
+  for (std::uint64_t c = 0; c < n; ++c) level.facet_offsets[c + 1] += level.facet_offsets[c];
   level.facet_ids.resize(incidences.size());
-  std::vector<std::uint32_t> fill(level.facet_offsets.begin(), level.facet_offsets.end() - 1);
-  for (std::uint64_t e : incidences) level.facet_ids[fill[e >> 32]++] = static_cast<std::uint32_t>(e);
+  UninitializedHugeVector<std::uint32_t> fill(level.facet_offsets.begin(), level.facet_offsets.end() - 1);
+  pool.run(parts, [&](std::size_t p, int) {
+    for_own_incidences(p, [&](std::uint64_t c, std::uint32_t facet) { level.facet_ids[fill[c]++] = facet; });
+  });
 }
 
 // Level j from level j − 1: every l-coface ν of a cell's simplex is a cell, with that cell as
@@ -102,7 +112,7 @@ CellLevel next_level(const CellLevel& prev, int d, int l, WorkerPool& pool) {
       write_out(written, t - n_number - n_enumerate);
     });
   }
-  set_facets(level, incidences);
+  set_facets(level, incidences, pool);
   return level;
 }
 
