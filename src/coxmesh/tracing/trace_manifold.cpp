@@ -275,9 +275,10 @@ void Tracer::walk_parallel() {
   while (head_ < result_.simplices.size()) {
     if (!start_level()) return;
     const std::uint32_t begin = head_, end = level_end_;
-    // About 8 chunks per worker balance the load; larger chunks keep neighbouring simplices (which
-    // share vertices and candidates) with one worker. The result does not depend on the chunking.
-    const std::uint32_t chunk = std::clamp<std::uint32_t>((end - begin) / (8 * workers_.size()), 32, 4096);
+    // About 32 chunks per worker: the last chunk of a level, which the other workers wait for, is
+    // short (8 per worker left a third of a millisecond per level of imbalance). Each worker keeps to
+    // its own share of consecutive chunks anyway. The result does not depend on the chunking.
+    const std::uint32_t chunk = std::clamp<std::uint32_t>((end - begin) / (32 * workers_.size()), 16, 4096);
     const std::size_t n = (end - begin + chunk - 1) / chunk;
     if (chunks_.size() < n) chunks_.resize(n);
     for (Worker& w : workers_) w.tested.clear(), w.payload.clear(), w.output_in.clear(), w.data.clear();

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <exception>
 #include <functional>
@@ -21,6 +22,10 @@ inline int resolve_threads(int requested) {
 
 /// A fixed set of workers for many short parallel loops (one per breadth-first level, one per batch
 /// of cells): the threads are started once, not per loop. The calling thread is worker 0.
+/// Between loops a worker spins for a short while before it sleeps, and so does the caller while
+/// it waits for the workers: loops come every few hundred microseconds (between them the caller
+/// merges), and waking a sleeping thread took about 100 µs per loop on a virtual machine.
+/// With more workers than cores the spinning is bounded, so it costs little.
 class WorkerPool {
  public:
   explicit WorkerPool(int workers) : workers_(std::max(workers, 1)) {
@@ -30,6 +35,7 @@ class WorkerPool {
     {
       std::lock_guard<std::mutex> lock(mutex_);
       stopping_ = true;
+      generation_.fetch_add(1);
     }
     wake_.notify_all();
     for (auto& t : threads_) t.join();
@@ -46,25 +52,41 @@ class WorkerPool {
       for (std::size_t t = 0; t < tasks; ++t) fn(t, 0);
       return;
     }
-    {
+    fn_ = &fn;  // (published to the workers by the generation's increment)
+    tasks_ = tasks;
+    next_.store(0, std::memory_order_relaxed);
+    failed_.store(false, std::memory_order_relaxed);
+    error_ = nullptr;
+    busy_.store(workers_ - 1, std::memory_order_relaxed);
+    generation_.fetch_add(1);  // seq_cst, against sleepers_ (see serve)
+    if (sleepers_.load() > 0) {
       std::lock_guard<std::mutex> lock(mutex_);
-      fn_ = &fn;
-      tasks_ = tasks;
-      next_ = 0;
-      failed_ = false;
-      error_ = nullptr;
-      busy_ = workers_ - 1;
-      ++generation_;
+      wake_.notify_all();
     }
-    wake_.notify_all();
     work(0);
-    std::unique_lock<std::mutex> lock(mutex_);
-    done_.wait(lock, [this] { return busy_ == 0; });
+    if (!spin_until([this] { return busy_.load(std::memory_order_acquire) == 0; })) {
+      std::unique_lock<std::mutex> lock(mutex_);
+      caller_sleeps_.store(true);
+      done_.wait(lock, [this] { return busy_.load() == 0; });
+      caller_sleeps_.store(false);
+    }
     fn_ = nullptr;
     if (error_) std::rethrow_exception(error_);
   }
 
  private:
+  template <class Ready>
+  static bool spin_until(Ready&& ready) {
+    constexpr auto kSpin = std::chrono::microseconds(200);
+    const auto start = std::chrono::steady_clock::now();
+    for (int i = 1;; ++i) {
+      if (ready()) return true;
+#if defined(__x86_64__) || defined(__i386__)
+      __builtin_ia32_pause();
+#endif
+      if (i % 64 == 0 && std::chrono::steady_clock::now() - start > kSpin) return false;
+    }
+  }
   void work(int worker) {
     for (std::size_t t; !failed_.load(std::memory_order_relaxed) && (t = next_.fetch_add(1)) < tasks_;) {
       try {
@@ -79,15 +101,19 @@ class WorkerPool {
   void serve(int worker) {
     std::uint64_t seen = 0;
     for (;;) {
-      {
+      if (!spin_until([&] { return generation_.load(std::memory_order_acquire) != seen; })) {
         std::unique_lock<std::mutex> lock(mutex_);
-        wake_.wait(lock, [&] { return stopping_ || generation_ != seen; });
-        if (stopping_) return;
-        seen = generation_;
+        sleepers_.fetch_add(1);  // seq_cst: run() either sees a sleeper or we see its generation
+        wake_.wait(lock, [&] { return generation_.load() != seen; });
+        sleepers_.fetch_sub(1);
       }
+      seen = generation_.load(std::memory_order_acquire);
+      if (stopping_.load()) return;
       work(worker);
-      std::lock_guard<std::mutex> lock(mutex_);
-      if (--busy_ == 0) done_.notify_one();
+      if (busy_.fetch_sub(1) == 1 && caller_sleeps_.load()) {  // the last one out wakes the caller
+        std::lock_guard<std::mutex> lock(mutex_);
+        done_.notify_one();
+      }
     }
   }
 
@@ -100,9 +126,9 @@ class WorkerPool {
   std::atomic<std::size_t> next_{0};
   std::atomic<bool> failed_{false};
   std::exception_ptr error_;
-  int busy_ = 0;
-  std::uint64_t generation_ = 0;
-  bool stopping_ = false;
+  std::atomic<int> busy_{0}, sleepers_{0};
+  std::atomic<bool> caller_sleeps_{false}, stopping_{false};
+  std::atomic<std::uint64_t> generation_{0};
 };
 
 }  // namespace coxmesh
