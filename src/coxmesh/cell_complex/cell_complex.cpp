@@ -98,7 +98,10 @@ CellLevel next_level(const CellLevel& prev, int d, int l, WorkerPool& pool) {
     if (written == 0) {  // room for the whole level at batch 0's rate: no copies as it grows
       std::size_t occurrences = 0;
       for (std::size_t t = 0; t < chunks_of(0); ++t) occurrences += buffers[0][t].ids.size();
-      incidences.reserve(occurrences * prev.size() / std::min(prev.size(), batch_cells) * 9 / 8);
+      const std::size_t cells0 = std::min(prev.size(), batch_cells);
+      incidences.reserve(occurrences * prev.size() / cells0 * 9 / 8);
+      // (the index at batch 0's rate too, which came out 0-10 % above the level's size)
+      if (batches > 2) level.simplices.reserve(std::size_t{level.simplices.size()} * prev.size() / cells0);
     }
     for (std::size_t t = 0; t < chunks_of(written); ++t) {
       Chunk& c = buffers[written % 3][t];

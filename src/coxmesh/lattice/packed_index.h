@@ -154,7 +154,7 @@ class PackedKeyIndex {
   // Slots are moved by their tags alone. Home slots keep their order when the table doubles, so
   // a pass in slot order writes the new table almost sequentially.
   void rehash(std::size_t capacity) {
-    HugeVector<std::uint64_t> old(capacity, 0);
+    UninitializedHugeVector<std::uint64_t> old = zeroed_huge_vector<std::uint64_t>(capacity);
     old.swap(slots_);
     mask_ = capacity - 1;
     shift_ = 32 - std::countr_zero(capacity);
@@ -171,7 +171,7 @@ class PackedKeyIndex {
   std::size_t mask_ = 0;
   int shift_ = 32;
   HugeVector<std::uint32_t> keys_;
-  HugeVector<std::uint64_t> slots_;
+  UninitializedHugeVector<std::uint64_t> slots_;
 };
 
 }  // namespace coxmesh

@@ -3,12 +3,16 @@
 // transparent huge pages, so that filling them takes one page fault per 2 MiB instead of one per
 // 4 KiB. Page faults are much of the cost of growing tables (measured: 11 µs per 4 KiB fault on a
 // virtual machine with shadow page tables, 45 times the cost per byte of a huge-page fault).
-// Smaller blocks come from operator new as usual.
+// Big blocks are mapped directly, so they arrive zero-filled by the kernel (zeroed_huge_vector
+// does not zero them again) and go back to the system when freed. Smaller blocks come from
+// operator new as usual.
 #pragma once
 
 #include <sys/mman.h>
 
+#include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <new>
 #include <utility>
 #include <vector>
@@ -25,18 +29,36 @@ struct HugePageAllocator {
   HugePageAllocator(const HugePageAllocator<U>&) {}
 
   T* allocate(std::size_t n) {
+    if (n > std::size_t(-1) / sizeof(T) - kPage) throw std::bad_array_new_length();
     const std::size_t bytes = n * sizeof(T);
     if (bytes < kPage) return static_cast<T*>(::operator new(bytes));
-    // (rounded up to whole 2 MiB pages: a partial last one would get small pages)
-    const std::size_t rounded = (bytes + kPage - 1) / kPage * kPage;
+    const std::size_t rounded = round_up(bytes);  // (a partial last 2 MiB would get small pages)
+#if defined(__SANITIZE_ADDRESS__)  // keep AddressSanitizer's view of the block
     void* p = ::operator new(rounded, std::align_val_t{kPage});
+    std::fill_n(static_cast<char*>(p), rounded, 0);
+#else
+    // Map 2 MiB more than needed, then unmap the ends so that the block is 2 MiB-aligned.
+    void* raw = mmap(nullptr, rounded + kPage, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (raw == MAP_FAILED) throw std::bad_alloc();
+    const auto start = reinterpret_cast<std::uintptr_t>(raw);
+    const std::uintptr_t aligned = (start + kPage - 1) / kPage * kPage;
+    if (aligned > start) munmap(raw, aligned - start);
+    if (aligned + rounded < start + rounded + kPage)
+      munmap(reinterpret_cast<void*>(aligned + rounded), start + kPage - aligned);
+    void* p = reinterpret_cast<void*>(aligned);
+#endif
     madvise(p, rounded, MADV_HUGEPAGE);  // (advice only: without THP it is a normal block)
     return static_cast<T*>(p);
   }
   void deallocate(T* p, std::size_t n) {
     if (n * sizeof(T) < kPage) return ::operator delete(p);
+#if defined(__SANITIZE_ADDRESS__)
     ::operator delete(p, std::align_val_t{kPage});
+#else
+    munmap(p, round_up(n * sizeof(T)));
+#endif
   }
+  static std::size_t round_up(std::size_t bytes) { return (bytes + kPage - 1) / kPage * kPage; }
   template <class U>
   bool operator==(const HugePageAllocator<U>&) const {
     return true;
@@ -69,5 +91,16 @@ struct UninitializedHugePageAllocator : HugePageAllocator<T> {
 };
 template <class T>
 using UninitializedHugeVector = std::vector<T, UninitializedHugePageAllocator<T>>;
+
+/// n zeros, without writing them when the block comes zero-filled from the kernel (≥ 2 MiB): a new
+/// hash table then costs its page faults only, not a second pass that zeroes it.
+template <class T>
+UninitializedHugeVector<T> zeroed_huge_vector(std::size_t n) {
+  UninitializedHugeVector<T> v;
+  v.reserve(n);
+  v.resize(n);
+  if (v.capacity() * sizeof(T) < HugePageAllocator<T>::kPage) std::fill(v.begin(), v.end(), T{});
+  return v;
+}
 
 }  // namespace coxmesh
