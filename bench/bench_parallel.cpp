@@ -6,6 +6,14 @@
 // Usage: bench_parallel [max-threads = hardware threads] [runs = 3] [case-name-substring]
 // Threads beyond the number of cores only show the overhead; run it on a machine with more cores
 // for the scaling curve (the table says how many cores it had).
+// On machines with up to 8 cores it also runs one thread pinned to each core in turn ("1 on CPU k"):
+// virtual cores need not be equally fast (on the development VM one was often 1.3–1.6 times slower
+// than the other on this memory-bound work), and the "bound" row is the best speedup that perfect
+// parallel code could reach over the 1-thread time with those cores: best 1-thread time × Σ 1 / (best
+// time pinned to core k).
+#include <pthread.h>
+#include <sched.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -69,8 +77,26 @@ struct Timing {
   std::uint64_t evaluations = 0, oracle_calls = 0;
 };
 
+// Runs the calling thread on one core (cpu ≥ 0) or on all of them (cpu < 0) until destroyed.
+struct PinnedTo {
+  explicit PinnedTo(int cpu) {
+    if (cpu < 0) return;
+    pthread_getaffinity_np(pthread_self(), sizeof(saved), &saved);
+    cpu_set_t one;
+    CPU_ZERO(&one);
+    CPU_SET(cpu, &one);
+    pinned = pthread_setaffinity_np(pthread_self(), sizeof(one), &one) == 0;
+  }
+  ~PinnedTo() {
+    if (pinned) pthread_setaffinity_np(pthread_self(), sizeof(saved), &saved);
+  }
+  cpu_set_t saved;
+  bool pinned = false;
+};
+
 // threads = 0: the sequential overload (one oracle); otherwise the factory overload.
-Timing run(const Case& c, int threads) {
+Timing run(const Case& c, int threads, int cpu = -1) {
+  const PinnedTo pin(cpu);
   Timing r;
   const std::vector<std::vector<double>> seeds = {c.seed.empty() ? c.f->seed() : c.seed};
   auto t0 = std::chrono::steady_clock::now();
@@ -111,6 +137,10 @@ int main(int argc, char** argv) {
   std::vector<int> counts = {0};
   for (int n = 1; n <= max_threads; n *= 2) counts.push_back(n);
   if (counts.back() != max_threads) counts.push_back(max_threads);
+  std::vector<int> cpus(counts.size(), -1);  // the core a run is pinned to, or -1
+  const int pinned_from = static_cast<int>(counts.size());
+  if (cores > 1 && cores <= 8)
+    for (int k = 0; k < std::min(cores, max_threads); ++k) counts.push_back(1), cpus.push_back(k);
 
   std::printf("%d hardware threads; wall time, best and median of %d interleaved runs; speedup = best 1-thread time / "
               "best time (the sequential row: the single-thread overload, one oracle)\n\n",
@@ -124,7 +154,7 @@ int main(int argc, char** argv) {
     // of them alike.
     std::vector<std::vector<Timing>> timings(counts.size());
     for (int i = 0; i < runs; ++i)
-      for (std::size_t n = 0; n < counts.size(); ++n) timings[n].push_back(run(c, counts[n]));
+      for (std::size_t n = 0; n < counts.size(); ++n) timings[n].push_back(run(c, counts[n], cpus[n]));
     auto column = [](const std::vector<Timing>& ts, double Timing::*field) {
       std::vector<double> v;
       for (const Timing& t : ts) v.push_back(t.*field);
@@ -142,13 +172,25 @@ int main(int argc, char** argv) {
         }
       const auto trace = column(timings[n], &Timing::trace), complex = column(timings[n], &Timing::complex);
       const Timing& last = timings[n].back();
+      const std::string label = counts[n] == 0 ? "sequential"
+                                : cpus[n] >= 0  ? "1 on CPU " + std::to_string(cpus[n])
+                                                : std::to_string(counts[n]);
       std::printf("| %s | %zu | %zu | %s | %.3f / %.3f | %.2f | %.3f | %.3f / %.3f | %.2f | %.3f | %llu | %llu |\n",
-                  c.name.c_str(), simplices, cells, counts[n] == 0 ? "sequential" : std::to_string(counts[n]).c_str(),
+                  c.name.c_str(), simplices, cells, label.c_str(),
                   min_of(trace), median(trace), one_trace / min_of(trace), median(column(timings[n], &Timing::trace_cpu)),
                   min_of(complex), median(complex), one_complex / min_of(complex),
                   median(column(timings[n], &Timing::complex_cpu)), static_cast<unsigned long long>(last.evaluations),
                   static_cast<unsigned long long>(last.oracle_calls));
       std::fflush(stdout);
+    }
+    if (pinned_from < static_cast<int>(counts.size())) {
+      double trace_rate = 0, complex_rate = 0;  // summed speeds of the cores, in runs per second
+      for (std::size_t n = pinned_from; n < counts.size(); ++n) {
+        trace_rate += 1 / min_of(column(timings[n], &Timing::trace));
+        complex_rate += 1 / min_of(column(timings[n], &Timing::complex));
+      }
+      std::printf("| %s | | | bound, %d cores | | %.2f | | | %.2f | | | |\n", c.name.c_str(),
+                  static_cast<int>(counts.size()) - pinned_from, one_trace * trace_rate, one_complex * complex_rate);
     }
   }
   return 0;
