@@ -41,8 +41,9 @@ struct CellComplex {
 /// (k+j)-cofaces of the simplices of the cells of dimension j − 1; each coface found from a cell
 /// records that cell as a facet. Consumes the trace result (its indices become level 0).
 /// `threads` workers (0 = all hardware threads) run batches of cells through a pipeline: cofaces
-/// enumerated in parallel, numbered in order by one task, incidences written out in parallel. The
-/// complex, numbering included, is identical for every thread count.
+/// enumerated in parallel, numbered in order by one task, incidences written out in parallel; the
+/// facet lists are sorted in parallel too. The complex, numbering included, is identical for every
+/// thread count.
 CellComplex build_cell_complex(TraceResult&& trace, int threads = 1);
 
 }  // namespace coxmesh
