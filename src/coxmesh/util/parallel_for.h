@@ -25,10 +25,14 @@ inline int resolve_threads(int requested) {
 /// Between loops a worker spins for a short while before it sleeps, and so does the caller while
 /// it waits for the workers: loops come every few hundred microseconds (between them the caller
 /// merges), and waking a sleeping thread took about 100 µs per loop on a virtual machine.
-/// With more workers than cores the spinning is bounded, so it costs little.
+/// With more workers than hardware threads nobody spins: a spinning thread would hold a core that
+/// a working one needs.
 class WorkerPool {
  public:
-  explicit WorkerPool(int workers) : workers_(std::max(workers, 1)) {
+  explicit WorkerPool(int workers)
+      : workers_(std::max(workers, 1)),
+        spin_(workers_ <= static_cast<int>(std::thread::hardware_concurrency()) ? std::chrono::microseconds(200)
+                                                                                  : std::chrono::microseconds(0)) {
     for (int w = 1; w < workers_; ++w) threads_.emplace_back([this, w] { serve(w); });
   }
   ~WorkerPool() {
@@ -76,15 +80,14 @@ class WorkerPool {
 
  private:
   template <class Ready>
-  static bool spin_until(Ready&& ready) {
-    constexpr auto kSpin = std::chrono::microseconds(200);
+  bool spin_until(Ready&& ready) const {
     const auto start = std::chrono::steady_clock::now();
     for (int i = 1;; ++i) {
       if (ready()) return true;
 #if defined(__x86_64__) || defined(__i386__)
       __builtin_ia32_pause();
 #endif
-      if (i % 64 == 0 && std::chrono::steady_clock::now() - start > kSpin) return false;
+      if (i % 64 == 0 && std::chrono::steady_clock::now() - start > spin_) return false;
     }
   }
   void work(int worker) {
@@ -118,6 +121,7 @@ class WorkerPool {
   }
 
   const int workers_;
+  const std::chrono::microseconds spin_;  // how long a waiting thread spins before it sleeps
   std::vector<std::thread> threads_;
   std::mutex mutex_;
   std::condition_variable wake_, done_;
