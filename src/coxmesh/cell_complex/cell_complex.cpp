@@ -101,7 +101,8 @@ CellLevel next_level(const CellLevel& prev, int d, int l, WorkerPool& pool) {
       const std::size_t cells0 = std::min(prev.size(), batch_cells);
       incidences.reserve(occurrences * prev.size() / cells0 * 9 / 8);
       // (the index at batch 0's rate too, which came out 0-10 % above the level's size)
-      if (batches > 2) level.simplices.reserve(std::size_t{level.simplices.size()} * prev.size() / cells0);
+      const std::size_t cells = std::size_t{level.simplices.size()} * prev.size() / cells0;
+      if (batches > 2) level.simplices.reserve(std::min<std::size_t>(cells, PackedKeyIndex::kMaxEntries));
     }
     for (std::size_t t = 0; t < chunks_of(written); ++t) {
       Chunk& c = buffers[written % 3][t];

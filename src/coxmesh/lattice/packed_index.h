@@ -94,8 +94,7 @@ class PackedKeyIndex {
   void insert_runs(std::span<const KeyRun> runs) {
     // Two distances, across the ends of runs (runs may be short): the home slot of the key kAhead
     // keys ahead; then, kAhead / 2 keys ahead, the stored key that home slot names if the tags match
-    // (a key met before, which the insertion compares: a second miss, half the cost of a batch of
-    // cofaces when it was not prefetched).
+    // (a key met before, which the insertion compares: otherwise a second, unprefetched miss).
     constexpr std::size_t kAhead = 16;
     struct Cursor {
       std::size_t run = 0, i = 0;
