@@ -2,6 +2,7 @@
 // inserting the keys one after the other.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "coxmesh/lattice/packed_index.h"
@@ -80,5 +81,20 @@ TEST(PackedKeyIndex, InsertRunsGivesTheIdsOfSequentialInsertion) {
         ASSERT_TRUE(std::equal(actual.key(id), actual.key(id) + words, expected.key(id)));
         ASSERT_EQ(actual.find(actual.key(id)), id);
       }
+    }
+}
+
+// New hash tables rely on this: small blocks are zeroed by hand, big ones come zero-filled from the
+// kernel; also right after a block of the same size was written and freed.
+TEST(HugePageAllocator, ZeroedVectorsAreZero) {
+  for (std::size_t n : {std::size_t{100}, (std::size_t{2} << 20) / 8, (std::size_t{5} << 20) / 8 + 3})
+    for (int round = 0; round < 2; ++round) {
+      {
+        UninitializedHugeVector<std::uint64_t> dirty(n);
+        std::fill(dirty.begin(), dirty.end(), ~std::uint64_t{0});
+      }
+      const auto v = zeroed_huge_vector<std::uint64_t>(n);
+      ASSERT_EQ(v.size(), n);
+      ASSERT_TRUE(std::all_of(v.begin(), v.end(), [](std::uint64_t x) { return x == 0; })) << n << " words";
     }
 }
