@@ -43,8 +43,7 @@ struct HugePageAllocator {
     const auto start = reinterpret_cast<std::uintptr_t>(raw);
     const std::uintptr_t aligned = (start + kPage - 1) / kPage * kPage;
     if (aligned > start) munmap(raw, aligned - start);
-    if (aligned + rounded < start + rounded + kPage)
-      munmap(reinterpret_cast<void*>(aligned + rounded), start + kPage - aligned);
+    munmap(reinterpret_cast<void*>(aligned + rounded), start + kPage - aligned);  // (never empty)
     void* p = reinterpret_cast<void*>(aligned);
 #endif
     madvise(p, rounded, MADV_HUGEPAGE);  // (advice only: without THP it is a normal block)
@@ -76,10 +75,6 @@ struct UninitializedHugePageAllocator : HugePageAllocator<T> {
   UninitializedHugePageAllocator() = default;
   template <class U>
   UninitializedHugePageAllocator(const UninitializedHugePageAllocator<U>&) {}
-  template <class U>
-  struct rebind {
-    using other = UninitializedHugePageAllocator<U>;
-  };
   template <class U>
   void construct(U* p) noexcept {
     ::new (static_cast<void*>(p)) U;
