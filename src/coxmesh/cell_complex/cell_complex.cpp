@@ -45,7 +45,7 @@ CellLevel next_level(const CellLevel& prev, int d, int l, WorkerPool& pool) {
   const std::uint32_t chunks_per_batch = std::clamp<std::uint32_t>(prev.size() / (32 * kChunk), 1, kMaxChunksPerBatch);
   const std::uint32_t batch_cells = kChunk * chunks_per_batch;
   const int words = packed_words(d);
-  struct Chunk {
+  struct alignas(64) Chunk {  // (padded: neighbouring chunks are filled by different workers)
     std::vector<std::uint32_t> keys, facets, ids;
     std::vector<std::uint64_t> hashes;
     std::size_t offset = 0;  // of its incidences
