@@ -22,7 +22,7 @@ namespace coxmesh {
 /// instead of moving at every lookup (a lock per lookup cost a third of the parallel walk). The
 /// table is one block, so that it gets huge pages: 64 tables of a few hundred kilobytes, one per
 /// shard, missed the TLB at almost every lookup and made the shared path 2.5 times as slow as an
-/// oracle's private cache. Storing a vertex takes the lock of its shard (one of 64, by hash), held
+/// oracle's private cache. Storing a vertex takes the lock of its shard (one of 32, by hash), held
 /// while F is evaluated, so no vertex is evaluated twice; its key and values go to the shard's
 /// blocks, and its slot is claimed by compare-and-swap (other shards insert at the same time). A
 /// table at load 1/2 is replaced by one twice its size with every shard locked; readers still
@@ -53,7 +53,7 @@ class SharedVertexValues {
         lock.lock();
         if (const double* found = find(v, hash)) return std::copy(found, found + stride_, out), false;
       }
-      if (s.size >= kMaxPerShard) throw InputError("more than 2^26 - 2 vertices in one shard of the shared values");
+      if (s.size >= kMaxPerShard) throw InputError("more than 2^27 - 2 vertices in one shard of the shared values");
       const std::uint32_t id = s.size;
       std::uint32_t offset;
       const int b = block_of(id, offset);
@@ -79,10 +79,12 @@ class SharedVertexValues {
   }
 
  private:
-  static constexpr std::uint32_t kShards = 64, kFirstBlock = 256;
-  static constexpr std::uint32_t kIdBits = 26, kMaxPerShard = (1u << kIdBits) - 2;
+  // (32 shards: growing holds every shard's lock and the growth lock, and ThreadSanitizer follows at
+  // most 64 locks held at once)
+  static constexpr std::uint32_t kShards = 32, kFirstBlock = 256;
+  static constexpr std::uint32_t kIdBits = 27, kMaxPerShard = (1u << kIdBits) - 2;
 
-  // Slots: (top 32 bits of the hash) << 32 | shard << 26 | (id in the shard + 1), 0 = empty; home
+  // Slots: (top 32 bits of the hash) << 32 | shard << 27 | (id in the shard + 1), 0 = empty; home
   // slot = leading hash bits.
   struct Table {
     explicit Table(std::size_t capacity)
