@@ -1,10 +1,14 @@
 // Multi-threaded tracing gives the same result, order and bits included, for every thread count,
 // equal to the sequential walk's; also when a limit or a box truncates the walk.
 // The cell complex built with several threads is identical too, cell numbering included, and
-// equal to a plain reference construction (one coface inserted after the other).
+// equal to a plain reference construction (one coface inserted after the other). Shared vertex
+// values store each vertex once however many threads ask for it at the same time.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
+#include <random>
+#include <thread>
 
 #include "coxmesh/cell_complex/cell_complex.h"
 #include "coxmesh/lattice/cofaces.h"
@@ -80,6 +84,43 @@ TEST(ParallelTracing, IdenticalForEveryThreadCount) {
       EXPECT_EQ(sharing.function_evaluations, sequential.function_evaluations) << threads << " threads";
     }
   }
+}
+
+// Four threads ask for the same 40,000 vertices in different orders, while the table grows from
+// its first size many times over: each vertex is evaluated exactly once, and every thread reads its
+// values.
+TEST(ParallelSharedValues, EveryVertexEvaluatedOnceWhileTheTableGrows) {
+  constexpr int kVertices = 40'000, kThreads = 4;
+  const auto vertex = [](int i, std::int32_t* v) { v[0] = i % 37 - 18, v[1] = i / 37 % 41 - 20, v[2] = i / (37 * 41) - 13; };
+  const auto value = [](const std::int32_t* v, int j) { return v[0] * 1e6 + v[1] * 1e3 + v[2] + 0.5 * j; };
+  SharedVertexValues shared(3, 2);
+  std::vector<std::atomic<int>> evaluations(kVertices);
+  std::vector<int> wrong(kThreads, 0), evaluated(kThreads, 0);
+  std::vector<std::thread> threads;
+  for (int w = 0; w < kThreads; ++w)
+    threads.emplace_back([&, w] {
+      std::vector<int> order(kVertices);
+      for (int i = 0; i < kVertices; ++i) order[i] = i;
+      std::shuffle(order.begin(), order.end(), std::mt19937(w));
+      for (const int i : order) {
+        std::int32_t v[3];
+        vertex(i, v);
+        double out[2];
+        evaluated[w] += shared.get(v, hash_words(reinterpret_cast<const std::uint32_t*>(v), 3), out, [&](double* stored) {
+          evaluations[i].fetch_add(1);
+          stored[0] = value(v, 0), stored[1] = value(v, 1);
+        });
+        wrong[w] += out[0] != value(v, 0) || out[1] != value(v, 1);
+      }
+    });
+  for (std::thread& t : threads) t.join();
+  int total = 0;
+  for (int w = 0; w < kThreads; ++w) {
+    EXPECT_EQ(wrong[w], 0) << "thread " << w;
+    total += evaluated[w];
+  }
+  EXPECT_EQ(total, kVertices);
+  for (int i = 0; i < kVertices; ++i) ASSERT_EQ(evaluations[i].load(), 1) << "vertex " << i;
 }
 
 TEST(ParallelTracing, ErrorsFromWorkersReachTheCaller) {

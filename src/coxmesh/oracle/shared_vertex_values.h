@@ -53,7 +53,7 @@ class SharedVertexValues {
       // table doubles when a shard fills half its share. (Counts per shard: one count for all
       // shards moved between the cores at every store; with 2 threads on S^2 in R^3 the walk was
       // 18-26 % slower than with private caches, 5-19 % with these.)
-      while (4 * (std::size_t{s.size} + 1) * kShards > 3 * table_.load(std::memory_order_relaxed)->size()) {
+      while (4 * (std::size_t{s.size} + 1) * kShards > 3 * table_.load(std::memory_order_acquire)->size()) {
         lock.unlock();  // (grow() takes every shard's lock)
         grow();
         lock.lock();
@@ -80,7 +80,7 @@ class SharedVertexValues {
       publish(s, shard, hash, id);
       stored_in_shard = s.size;
     }
-    if (2 * stored_in_shard * kShards > table_.load(std::memory_order_relaxed)->size()) grow();
+    if (2 * stored_in_shard * kShards > table_.load(std::memory_order_acquire)->size()) grow();
     std::copy(stored, stored + stride_, out);
     return true;
   }
