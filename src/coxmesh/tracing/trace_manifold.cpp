@@ -92,6 +92,7 @@ class Tracer {
     result_.codimension = k_;
     result_.simplices = PackedKeyIndex(packed_words(d_));
     result_.boundary_simplices = PackedKeyIndex(packed_words(d_));
+    window_[0] = window_[1] = PackedKeyIndex(packed_words(d_));
     for (IntersectionOracle* o : oracles) workers_.push_back(Worker{o, PackedKeyIndex(packed_words(d_)), {}, {}, {}, 0});
   }
 
@@ -160,6 +161,8 @@ class Tracer {
     std::vector<std::pair<std::size_t, std::size_t>> shares_;  // [front, back) per worker
   };
   void walk_parallel();
+  void open_window(std::uint32_t begin, std::uint32_t end);
+  std::uint32_t find_near(const std::uint32_t* key, std::uint64_t hash) const;
   void process_chunk(std::uint32_t chunk, std::uint32_t begin, std::uint32_t end, Worker& worker, ChunkOutput& out);
   Found classify_in_level(const Simplex& tau, std::uint32_t chunk, Worker& worker, ChunkOutput& out);
   void merge(std::size_t n_chunks);
@@ -182,6 +185,11 @@ class Tracer {
   std::vector<ChunkOutput> chunks_;
   ChunkClaims claims_;
   std::vector<KeyRun> runs_;
+  // The simplices of S that a level's walk can meet: its own and the previous level's (a neighbour
+  // of a simplex of level L is in level L − 1, L or L + 1). Two small indexes instead of S's big
+  // one, whose lookups missed the caches; window_begin_[i] = the S id of entry 0 of window_[i].
+  PackedKeyIndex window_[2];
+  std::uint32_t window_begin_[2] = {0, 0};
   std::unique_ptr<WorkerPool> pool_;  // started by the first parallel level
   std::atomic<bool> box_reached_{false};
 };
@@ -271,10 +279,28 @@ void Tracer::walk() {
   }
 }
 
+// The level [begin, end) becomes window_[0]; the previous one moves to window_[1] (at the first
+// level of a walk, whatever it held: S before this walk is not next to it).
+void Tracer::open_window(std::uint32_t begin, std::uint32_t end) {
+  std::swap(window_[0], window_[1]);
+  std::swap(window_begin_[0], window_begin_[1]);
+  window_[0].clear();
+  window_[0].reserve(end - begin);
+  window_begin_[0] = begin;
+  for (std::uint32_t id = begin; id < end; ++id) window_[0].insert(result_.simplices.key(id));
+}
+
+std::uint32_t Tracer::find_near(const std::uint32_t* key, std::uint64_t hash) const {
+  for (int i = 0; i < 2; ++i)
+    if (const std::uint32_t id = window_[i].find(key, hash); id != PackedKeyIndex::kAbsent) return window_begin_[i] + id;
+  return PackedKeyIndex::kAbsent;
+}
+
 void Tracer::walk_parallel() {
   while (head_ < result_.simplices.size()) {
     if (!start_level()) return;
     const std::uint32_t begin = head_, end = level_end_;
+    open_window(begin, end);
     // About 32 chunks per worker: the last chunk of a level, which the other workers wait for, is
     // short (8 per worker left a third of a millisecond per level of imbalance). Each worker keeps to
     // its own share of consecutive chunks anyway. The result does not depend on the chunking.
@@ -305,7 +331,9 @@ Found Tracer::classify_in_level(const Simplex& tau, std::uint32_t chunk, Worker&
   std::uint32_t key[packed_words(kMaxDimension)];
   pack(tau, key);
   const std::uint64_t h = hash_words(key, words);
-  if (std::uint32_t id = result_.simplices.find(key, h); id != PackedKeyIndex::kAbsent) return {Kind::inside, id};
+  // (a simplex of S outside the window, which only a degenerate M̂ could show, would be tested
+  // again and output, and the merge would find it in S: the result is the same)
+  if (std::uint32_t id = find_near(key, h); id != PackedKeyIndex::kAbsent) return {Kind::inside, id};
   const auto [id, fresh] = worker.tested.insert(key, h);
   const auto output = [&](const double* found) {
     out.inside_keys.insert(out.inside_keys.end(), key, key + words);
