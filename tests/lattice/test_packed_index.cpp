@@ -84,6 +84,45 @@ TEST(PackedKeyIndex, InsertRunsGivesTheIdsOfSequentialInsertion) {
     }
 }
 
+// Keys appended unindexed are found after index_appended(), with the table grown across several
+// doublings at once; a key appended although present is reported (the smallest such id), stays
+// unindexed, and the rest is indexed; truncate() forgets the later ids.
+TEST(PackedKeyIndex, AppendedKeysAreIndexedAndDuplicatesReported) {
+  std::mt19937_64 rng(5);
+  for (int words : {1, 3}) {
+    PackedKeyIndex index(words);
+    std::vector<std::uint32_t> key(words);
+    const auto make = [&](std::uint32_t i) {
+      for (int w = 0; w < words; ++w) key[w] = i * 2654435761u + static_cast<std::uint32_t>(w);
+      return key.data();
+    };
+    for (std::uint32_t i = 0; i < 1000; ++i) index.insert(make(i));
+    for (std::uint32_t i = 1000; i < 50000; ++i) ASSERT_EQ(index.append_unindexed(make(i), hash_words(make(i), words)), i);
+    EXPECT_EQ(index.find(make(1500)), PackedKeyIndex::kAbsent);  // not indexed yet
+    EXPECT_EQ(index.unindexed(), 49000u);
+    EXPECT_EQ(index.index_appended(), PackedKeyIndex::kAbsent);
+    EXPECT_EQ(index.unindexed(), 0u);
+    for (std::uint32_t i = 0; i < 50000; ++i) ASSERT_EQ(index.find(make(i)), i);
+    EXPECT_EQ(index.find(make(50000)), PackedKeyIndex::kAbsent);
+    // Two keys that are there already, among new ones, in random order of hashes.
+    std::vector<std::uint32_t> extra = {50000, 50001, 70, 50002, 49000, 50003};
+    std::shuffle(extra.begin(), extra.end(), rng);
+    std::uint32_t first_duplicate = PackedKeyIndex::kAbsent;
+    for (std::uint32_t i : extra) {
+      const std::uint32_t id = index.append_unindexed(make(i), hash_words(make(i), words));
+      if (i < 50000) first_duplicate = std::min(first_duplicate, id);
+    }
+    EXPECT_EQ(index.index_appended(), first_duplicate);
+    for (std::uint32_t id = 50000; id < index.size(); ++id) {
+      const std::uint32_t found = index.find(index.key(id));
+      ASSERT_TRUE(found == id || found < 50000) << id;
+    }
+    index.truncate(30000);
+    EXPECT_EQ(index.size(), 30000u);
+    for (std::uint32_t i = 0; i < 50000; ++i) ASSERT_EQ(index.find(make(i)), i < 30000 ? i : PackedKeyIndex::kAbsent);
+  }
+}
+
 // New hash tables rely on this: small blocks are zeroed by hand, big ones come zero-filled from the
 // kernel; also right after a block of the same size was written and freed.
 TEST(HugePageAllocator, ZeroedVectorsAreZero) {

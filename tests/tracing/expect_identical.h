@@ -15,6 +15,9 @@ inline void expect_identical(const coxmesh::TraceResult& a, const coxmesh::Trace
   const int w = a.simplices.words();
   for (std::uint32_t i = 0; i < a.simplices.size(); ++i)
     ASSERT_EQ(std::memcmp(a.simplices.key(i), b.simplices.key(i), 4 * w), 0) << what << " simplex " << i;
+  // Every simplex is found in b's index under its id (the parallel walk indexes S after the fact).
+  ASSERT_EQ(b.simplices.unindexed(), 0u) << what;
+  for (std::uint32_t i = 0; i < b.simplices.size(); ++i) ASSERT_EQ(b.simplices.find(b.simplices.key(i)), i) << what;
   for (std::uint32_t i = 0; i < a.boundary_simplices.size(); ++i)
     ASSERT_EQ(std::memcmp(a.boundary_simplices.key(i), b.boundary_simplices.key(i), 4 * w), 0) << what;
   // Bitwise equality of the points (memcmp would be passed null for empty vectors).

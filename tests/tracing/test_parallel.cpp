@@ -90,6 +90,51 @@ TEST(ParallelTracing, IdenticalForEveryThreadCount) {
   }
 }
 
+// An oracle for which the walk's graph is not symmetric: the k-simplices in a ball of the lattice
+// are transverse or not at random (by a hash of the simplex), so a cofacet often has three or more
+// transverse facets, and the first one after τ leads to a simplex whose own walk need not lead back.
+// The parallel walk then meets simplices of levels older than the previous one again; it must
+// notice and give the sequential result all the same.
+class ScatteredOracle : public IntersectionOracle {
+ public:
+  ScatteredOracle(int d, int k, int radius) : d_(d), k_(k), radius_(radius) {}
+  int ambient_dimension() const override { return d_; }
+  int codimension() const override { return k_; }
+  Intersection intersect(const Simplex& tau, double* point) override {
+    std::int32_t v[kMaxDimension];
+    std::fill(point, point + d_, 0.0);
+    for (int j = 0; j <= tau.k; ++j) {
+      tau.vertex(j, v);
+      std::int64_t norm2 = 0;
+      for (int i = 0; i < d_; ++i) norm2 += std::int64_t{v[i]} * v[i], point[i] += v[i] / (tau.k + 1.0);
+      if (norm2 > std::int64_t{radius_} * radius_) return {};
+    }
+    std::uint32_t key[packed_words(kMaxDimension)];
+    pack(tau, key);
+    return {hash_words(key, packed_words(d_)) % 3 != 0, -1};
+  }
+
+ private:
+  int d_, k_, radius_;
+};
+
+TEST(ParallelTracing, IdenticalWhenTheWalkGraphIsNotSymmetric) {
+  for (const auto& [d, k, radius] : {std::tuple{3, 1, 12}, std::tuple{4, 2, 5}}) {
+    const Triangulation t = Triangulation::freudenthal(d);
+    const std::vector<std::vector<double>> seeds = {std::vector<double>(d, 0.25)};
+    ScatteredOracle oracle(d, k, radius);
+    const TraceResult sequential = trace_manifold(t, oracle, seeds);
+    EXPECT_GT(sequential.simplices.size(), 2000u);
+    for (int threads : {2, 3, 4}) {
+      TraceOptions options;
+      options.threads = threads;
+      const TraceResult parallel =
+          trace_manifold(t, [&] { return std::make_unique<ScatteredOracle>(d, k, radius); }, seeds, options);
+      expect_identical(sequential, parallel, std::to_string(d) + "/" + std::to_string(k) + ", " + std::to_string(threads) + " threads");
+    }
+  }
+}
+
 // Four threads ask for the same 40,000 vertices in different orders, while the table grows from
 // its first size many times over: each vertex is evaluated exactly once, and every thread reads its
 // values.

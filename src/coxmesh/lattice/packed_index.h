@@ -120,6 +120,26 @@ class PackedKeyIndex {
       }
   }
 
+  /// Appends a key that the caller knows to be absent, without indexing it yet: it gets the next
+  /// id and key(id) works at once, but find() and insert() do not see it until index_appended().
+  /// For loads of keys deduplicated elsewhere (the parallel walk's levels): one pass over the table
+  /// in slot order at the end instead of a random access per key.
+  std::uint32_t append_unindexed(const std::uint32_t* key, std::uint64_t hash) {
+    if (size_ >= kMaxEntries) throw InputError("more than 2^31 - 1 entries in one index");
+    const std::uint32_t id = size_++;
+    keys_.insert(keys_.end(), key, key + words_);
+    unindexed_.push_back((hash >> 32 << 32) | (id + 1));
+    return id;
+  }
+  /// Keys appended and not indexed yet.
+  std::size_t unindexed() const { return unindexed_.size(); }
+  /// Indexes the appended keys, sorted by home slot so that the insertions sweep the table once
+  /// (growing it first if needed). Returns the id of an appended key that was in the index already,
+  /// which the caller claimed it was not (that key stays unindexed), else kAbsent.
+  std::uint32_t index_appended();
+  /// Keeps the keys of ids < n and forgets the others (rebuilds the table: not for hot paths).
+  void truncate(std::uint32_t n);
+
   /// Simplex convenience: packs and hashes once.
   std::uint32_t find(const Simplex& s) const {
     std::uint32_t w[packed_words(kMaxDimension)];
@@ -146,6 +166,7 @@ class PackedKeyIndex {
 
   /// Removes every key; keeps the memory for reuse.
   void clear() {
+    unindexed_.clear();
     if (size_ == 0) return;
     keys_.clear();
     size_ = 0;
@@ -192,6 +213,7 @@ class PackedKeyIndex {
   int shift_ = 32;
   HugeVector<std::uint32_t> keys_;
   UninitializedHugeVector<std::uint64_t> slots_;
+  HugeVector<std::uint64_t> unindexed_;  // slot entries of appended keys, in id order
 };
 
 }  // namespace coxmesh

@@ -92,8 +92,11 @@ class Tracer {
     result_.codimension = k_;
     result_.simplices = PackedKeyIndex(packed_words(d_));
     result_.boundary_simplices = PackedKeyIndex(packed_words(d_));
-    window_[0] = window_[1] = PackedKeyIndex(packed_words(d_));
-    for (IntersectionOracle* o : oracles) workers_.push_back(Worker{o, PackedKeyIndex(packed_words(d_)), {}, {}, {}, 0});
+    level_keys_ = PackedKeyIndex(packed_words(d_));
+    for (IntersectionOracle* o : oracles) {
+      const PackedKeyIndex empty(packed_words(d_));
+      workers_.push_back(Worker{o, empty, {}, {}, {}, 0, {empty, empty}, {{0, 0}, {0, 0}}});
+    }
   }
 
   void add_seed(std::span<const double> seed, bool must_succeed);
@@ -135,6 +138,13 @@ class Tracer {
     std::vector<std::uint32_t> output_in;  // per tested simplex inside: the first chunk that output it
     std::vector<double> data;            // (d + 1) per transverse simplex: point, D̂
     std::uint64_t calls;
+    // The simplices of S that a level's walk can meet: its own and the previous level's (a
+    // neighbour of a simplex of level L is in level L − 1, L or L + 1). Two small indexes of
+    // ids [near_range[i].first, near_range[i].second) of S instead of S's big one, whose lookups
+    // missed the caches; one pair per worker, built by the worker itself: lookups of lines that
+    // another core wrote last cost several times a local read.
+    PackedKeyIndex near[2];
+    std::pair<std::uint32_t, std::uint32_t> near_range[2];
   };
   // Which chunks of a level are left: worker w starts at the front of its own contiguous share, so
   // it keeps to one region of the manifold (its caches, its memory of tested simplices); a worker
@@ -160,9 +170,18 @@ class Tracer {
     std::mutex mutex_;
     std::vector<std::pair<std::size_t, std::size_t>> shares_;  // [front, back) per worker
   };
-  void walk_parallel();
-  void open_window(std::uint32_t begin, std::uint32_t end);
-  std::uint32_t find_near(const std::uint32_t* key, std::uint64_t hash) const;
+  bool walk_parallel();
+  void walk_sequential();
+  // What a parallel walk changes, to undo it when it has to be redone sequentially.
+  struct Mark {
+    std::uint32_t head, simplices, boundary_simplices;
+    std::size_t last_progress;
+    TraceStatus status;
+  };
+  Mark mark() const;
+  void undo(const Mark& m);
+  void open_windows(Worker& worker) const;
+  static std::uint32_t find_near(const Worker& worker, const std::uint32_t* key, std::uint64_t hash);
   void process_chunk(std::uint32_t chunk, std::uint32_t begin, std::uint32_t end, Worker& worker, ChunkOutput& out);
   Found classify_in_level(const Simplex& tau, std::uint32_t chunk, Worker& worker, ChunkOutput& out);
   void merge(std::size_t n_chunks);
@@ -185,11 +204,8 @@ class Tracer {
   std::vector<ChunkOutput> chunks_;
   ChunkClaims claims_;
   std::vector<KeyRun> runs_;
-  // The simplices of S that a level's walk can meet: its own and the previous level's (a neighbour
-  // of a simplex of level L is in level L − 1, L or L + 1). Two small indexes instead of S's big
-  // one, whose lookups missed the caches; window_begin_[i] = the S id of entry 0 of window_[i].
-  PackedKeyIndex window_[2];
-  std::uint32_t window_begin_[2] = {0, 0};
+  std::pair<std::uint32_t, std::uint32_t> level_, previous_level_;  // ids of S (parallel walk)
+  PackedKeyIndex level_keys_;  // the merge's: the simplices of the level it appends to S
   std::unique_ptr<WorkerPool> pool_;  // started by the first parallel level
   std::atomic<bool> box_reached_{false};
 };
@@ -254,8 +270,38 @@ bool Tracer::start_level() {
   return true;
 }
 
+// The parallel walk appends its levels to S without indexing them (its workers look simplices up
+// in the indexes of two levels), and S is indexed when it has doubled and at the end. A simplex met
+// twice shows up there; only an oracle for which the walk's graph is not symmetric (a cofacet with
+// more than two transverse facets) can cause that, and the walk is then redone sequentially, so
+// the result is the same for every thread count in every case.
 void Tracer::walk() {
-  if (workers_.size() > 1) return walk_parallel();
+  if (workers_.size() == 1) return walk_sequential();
+  const Mark before = mark();
+  if (walk_parallel() && result_.simplices.index_appended() == PackedKeyIndex::kAbsent) return;
+  undo(before);
+  walk_sequential();
+}
+
+Tracer::Mark Tracer::mark() const {
+  return {head_, result_.simplices.size(), result_.boundary_simplices.size(), last_progress_, result_.status};
+}
+
+void Tracer::undo(const Mark& m) {
+  const std::size_t n = m.simplices, b = m.boundary_simplices;
+  head_ = level_end_ = m.head;
+  result_.simplices.truncate(static_cast<std::uint32_t>(n));
+  result_.points.resize(n * d_);
+  domain_values_.resize(n);
+  arrivals_.resize(n);
+  result_.boundary_simplices.truncate(static_cast<std::uint32_t>(b));
+  result_.boundary_points.resize(b * d_);
+  last_progress_ = m.last_progress;
+  result_.status = m.status;
+  box_reached_.store(false);
+}
+
+void Tracer::walk_sequential() {
   Simplex tau;
   CofaceEnumerator cofacets;
   std::int32_t v[kMaxDimension];
@@ -279,28 +325,42 @@ void Tracer::walk() {
   }
 }
 
-// The level [begin, end) becomes window_[0]; the previous one moves to window_[1] (at the first
-// level of a walk, whatever it held: S before this walk is not next to it).
-void Tracer::open_window(std::uint32_t begin, std::uint32_t end) {
-  std::swap(window_[0], window_[1]);
-  std::swap(window_begin_[0], window_begin_[1]);
-  window_[0].clear();
-  window_[0].reserve(end - begin);
-  window_begin_[0] = begin;
-  for (std::uint32_t id = begin; id < end; ++id) window_[0].insert(result_.simplices.key(id));
+// Makes the worker's indexes those of the current and the previous level (at the first level of a
+// walk the previous one is empty: S before this walk is not next to it). A worker that sat out a
+// level (the others took all its chunks) builds both.
+void Tracer::open_windows(Worker& worker) const {
+  if (worker.near_range[0] == level_) return;
+  if (worker.near_range[0] == previous_level_) {
+    std::swap(worker.near[0], worker.near[1]);
+    std::swap(worker.near_range[0], worker.near_range[1]);
+  } else {
+    worker.near[1].clear();
+    worker.near[1].reserve(previous_level_.second - previous_level_.first);
+    for (std::uint32_t id = previous_level_.first; id < previous_level_.second; ++id)
+      worker.near[1].insert(result_.simplices.key(id));
+    worker.near_range[1] = previous_level_;
+  }
+  worker.near[0].clear();
+  worker.near[0].reserve(level_.second - level_.first);
+  for (std::uint32_t id = level_.first; id < level_.second; ++id) worker.near[0].insert(result_.simplices.key(id));
+  worker.near_range[0] = level_;
 }
 
-std::uint32_t Tracer::find_near(const std::uint32_t* key, std::uint64_t hash) const {
+std::uint32_t Tracer::find_near(const Worker& worker, const std::uint32_t* key, std::uint64_t hash) {
   for (int i = 0; i < 2; ++i)
-    if (const std::uint32_t id = window_[i].find(key, hash); id != PackedKeyIndex::kAbsent) return window_begin_[i] + id;
+    if (const std::uint32_t id = worker.near[i].find(key, hash); id != PackedKeyIndex::kAbsent)
+      return worker.near_range[i].first + id;
   return PackedKeyIndex::kAbsent;
 }
 
-void Tracer::walk_parallel() {
+// False when S, indexed after doubling, holds a simplex twice (see walk).
+bool Tracer::walk_parallel() {
+  level_ = {head_, head_};
   while (head_ < result_.simplices.size()) {
-    if (!start_level()) return;
+    if (!start_level()) return true;
     const std::uint32_t begin = head_, end = level_end_;
-    open_window(begin, end);
+    previous_level_ = level_;
+    level_ = {begin, end};
     // About 32 chunks per worker: the last chunk of a level, which the other workers wait for, is
     // short (8 per worker left a third of a millisecond per level of imbalance). Each worker keeps to
     // its own share of consecutive chunks anyway. The result does not depend on the chunking.
@@ -311,6 +371,7 @@ void Tracer::walk_parallel() {
     if (!pool_) pool_ = std::make_unique<WorkerPool>(static_cast<int>(workers_.size()));
     claims_.reset(n, workers_.size());
     pool_->run(workers_.size(), [&](std::size_t share, int worker) {
+      open_windows(workers_[worker]);
       for (std::size_t c; claims_.claim(share, c);) {
         chunks_[c].clear();
         const std::uint32_t a = begin + static_cast<std::uint32_t>(c) * chunk;
@@ -320,7 +381,11 @@ void Tracer::walk_parallel() {
     merge(n);
     if (box_reached_.load()) result_.status = TraceStatus::box_reached;
     head_ = end;
+    if (2 * result_.simplices.unindexed() > result_.simplices.size() &&
+        result_.simplices.index_appended() != PackedKeyIndex::kAbsent)
+      return false;
   }
+  return true;
 }
 
 // The parallel classify: S is read-only during a level, so discoveries go to `out`. The merge keeps
@@ -331,9 +396,9 @@ Found Tracer::classify_in_level(const Simplex& tau, std::uint32_t chunk, Worker&
   std::uint32_t key[packed_words(kMaxDimension)];
   pack(tau, key);
   const std::uint64_t h = hash_words(key, words);
-  // (a simplex of S outside the window, which only a degenerate M̂ could show, would be tested
-  // again and output, and the merge would find it in S: the result is the same)
-  if (std::uint32_t id = find_near(key, h); id != PackedKeyIndex::kAbsent) return {Kind::inside, id};
+  // (a simplex of an older level, which only a degenerate oracle could show, would be tested again
+  // and output: see walk)
+  if (std::uint32_t id = find_near(worker, key, h); id != PackedKeyIndex::kAbsent) return {Kind::inside, id};
   const auto [id, fresh] = worker.tested.insert(key, h);
   const auto output = [&](const double* found) {
     out.inside_keys.insert(out.inside_keys.end(), key, key + words);
@@ -400,7 +465,8 @@ void Tracer::process_chunk(std::uint32_t chunk, std::uint32_t begin, std::uint32
 }
 
 // Appends the level's discoveries to S in chunk order (the first occurrence of a simplex wins, as in
-// the sequential walk): one ordered batch insertion over all chunks, prefetched across chunks.
+// the sequential walk). The workers found none of them in the current or the previous level, so
+// they are only deduplicated among themselves, in a small index, and appended to S unindexed.
 void Tracer::merge(std::size_t n_chunks) {
   runs_.clear();
   for (std::size_t c = 0; c < n_chunks; ++c) {
@@ -408,18 +474,20 @@ void Tracer::merge(std::size_t n_chunks) {
     out.ids.resize(out.inside_hashes.size());
     runs_.push_back({out.inside_keys.data(), out.inside_hashes.data(), out.inside_hashes.size(), out.ids.data()});
   }
-  result_.simplices.insert_runs(runs_);
+  level_keys_.clear();
+  level_keys_.insert_runs(runs_);
+  const int words = packed_words(d_);
   for (std::size_t c = 0; c < n_chunks; ++c) {
     const ChunkOutput& out = chunks_[c];
     for (std::size_t r = 0; r < out.ids.size(); ++r) {
       if (!(out.ids[r] & PackedKeyIndex::kNewBit)) continue;
+      result_.simplices.append_unindexed(out.inside_keys.data() + r * words, out.inside_hashes[r]);
       const double* p = out.inside_data.data() + r * (d_ + 1);
       result_.points.insert(result_.points.end(), p, p + d_);
       domain_values_.push_back(p[d_]);
       arrivals_.push_back(out.inside_arrivals[r]);
     }
   }
-  const int words = packed_words(d_);
   for (std::size_t c = 0; c < n_chunks; ++c) {
     const ChunkOutput& out = chunks_[c];
     for (std::size_t r = 0; r * words < out.boundary_keys.size(); ++r)
