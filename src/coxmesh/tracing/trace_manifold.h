@@ -80,11 +80,14 @@ using OracleFactory = std::function<std::unique_ptr<IntersectionOracle>()>;
 /// Multi-threaded tracing with options.threads workers: level-synchronous breadth-first search.
 /// Each level's simplices are processed in chunks: a worker starts on its own share of consecutive
 /// chunks and then takes chunks from the largest share left (a short lock per chunk, none in the
-/// walk itself); it reads S (frozen during the level; through indexes of the current and previous
-/// levels, the only ones a level's walk meets), remembers what it tested itself and writes
+/// walk itself); it reads S (frozen during the level; through its own indexes of the current and
+/// previous levels, the only ones a level's walk meets), remembers what it tested itself and writes
 /// discoveries to the chunk's buffer; the buffers are merged in chunk order, so S, S_∂, their ids and
-/// points are identical for 1, 2, … N threads and equal to the single-oracle overload's. With one
-/// thread it is the single-oracle walk. function_evaluations sums the workers' oracles.
+/// points are identical for 1, 2, … N threads and equal to the single-oracle overload's. (An oracle
+/// whose walk graph is not symmetric, e.g. one reporting three transverse facets of a cofacet, can
+/// make the walk meet a simplex of an older level again; that is detected when S is indexed, and the
+/// walk is redone sequentially: the same result, more time.) With one thread it is the single-oracle
+/// walk. function_evaluations sums the workers' oracles.
 TraceResult trace_manifold(const Triangulation& triangulation, const OracleFactory& make_oracle,
                            const std::vector<std::vector<double>>& seeds, const TraceOptions& options = {});
 
