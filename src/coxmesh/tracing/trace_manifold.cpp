@@ -271,7 +271,9 @@ bool Tracer::start_level() {
 }
 
 // The parallel walk appends its levels to S without indexing them (its workers look simplices up
-// in the indexes of two levels), and S is indexed when it has doubled and at the end. A simplex met
+// in the indexes of two levels), and S is indexed at the end, and whenever it has grown fourfold
+// since it last was (so a walk gone astray wastes at most that much; every fourfold, not twofold:
+// each indexing grows the table into fresh memory, 30 % of its time on S^2 in R^3). A simplex met
 // twice shows up there; only an oracle for which the walk's graph is not symmetric (a cofacet with
 // more than two transverse facets) can cause that, and the walk is then redone sequentially, so
 // the result is the same for every thread count in every case.
@@ -381,7 +383,7 @@ bool Tracer::walk_parallel() {
     merge(n);
     if (box_reached_.load()) result_.status = TraceStatus::box_reached;
     head_ = end;
-    if (2 * result_.simplices.unindexed() > result_.simplices.size() &&
+    if (4 * result_.simplices.unindexed() > 3 * result_.simplices.size() &&
         result_.simplices.index_appended() != PackedKeyIndex::kAbsent)
       return false;
   }
