@@ -332,20 +332,19 @@ void Tracer::walk_sequential() {
 // level (the others took all its chunks) builds both.
 void Tracer::open_windows(Worker& worker) const {
   if (worker.near_range[0] == level_) return;
+  const auto build = [&](int i, std::pair<std::uint32_t, std::uint32_t> range) {
+    worker.near[i].clear();
+    worker.near[i].reserve(range.second - range.first);
+    for (std::uint32_t id = range.first; id < range.second; ++id) worker.near[i].insert(result_.simplices.key(id));
+    worker.near_range[i] = range;
+  };
   if (worker.near_range[0] == previous_level_) {
     std::swap(worker.near[0], worker.near[1]);
     std::swap(worker.near_range[0], worker.near_range[1]);
   } else {
-    worker.near[1].clear();
-    worker.near[1].reserve(previous_level_.second - previous_level_.first);
-    for (std::uint32_t id = previous_level_.first; id < previous_level_.second; ++id)
-      worker.near[1].insert(result_.simplices.key(id));
-    worker.near_range[1] = previous_level_;
+    build(1, previous_level_);
   }
-  worker.near[0].clear();
-  worker.near[0].reserve(level_.second - level_.first);
-  for (std::uint32_t id = level_.first; id < level_.second; ++id) worker.near[0].insert(result_.simplices.key(id));
-  worker.near_range[0] = level_;
+  build(0, level_);
 }
 
 std::uint32_t Tracer::find_near(const Worker& worker, const std::uint32_t* key, std::uint64_t hash) {
@@ -355,7 +354,7 @@ std::uint32_t Tracer::find_near(const Worker& worker, const std::uint32_t* key, 
   return PackedKeyIndex::kAbsent;
 }
 
-// False when S, indexed after doubling, holds a simplex twice (see walk).
+// False when S, indexed on the way, holds a simplex twice (see walk).
 bool Tracer::walk_parallel() {
   level_ = {head_, head_};
   while (head_ < result_.simplices.size()) {
