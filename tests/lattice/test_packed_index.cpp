@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <random>
+#include <thread>
 
 #include "coxmesh/lattice/packed_index.h"
 
@@ -121,6 +122,56 @@ TEST(PackedKeyIndex, AppendedKeysAreIndexedAndDuplicatesReported) {
     EXPECT_EQ(index.size(), 30000u);
     for (std::uint32_t i = 0; i < 50000; ++i) ASSERT_EQ(index.find(make(i)), i < 30000 ? i : PackedKeyIndex::kAbsent);
   }
+}
+
+// The parallel walk's bulk append: n ids at once, keys written afterwards in any order (here by two
+// threads, each taking every other id), then indexed like keys appended one by one.
+TEST(PackedKeyIndex, KeysAppendedInBulkAreWrittenInAnyOrder) {
+  for (int words : {1, 4}) {
+    PackedKeyIndex index(words);
+    const auto make = [&](std::uint32_t i) {
+      std::vector<std::uint32_t> key(words);
+      for (int w = 0; w < words; ++w) key[w] = i * 2246822519u + static_cast<std::uint32_t>(w);
+      return key;
+    };
+    for (std::uint32_t i = 0; i < 100; ++i) index.insert(make(i).data());
+    std::uint32_t next = 100;
+    for (std::uint32_t n : {1u, 0u, 700u, 20000u, 3u, 150000u}) {  // grows through big blocks
+      ASSERT_EQ(index.append_unindexed(n), next);
+      ASSERT_EQ(index.size(), next + n);
+      const auto write = [&](std::uint32_t parity) {
+        for (std::uint32_t id = next + n; id-- > next;)
+          if (id % 2 == parity) index.set_appended(id, make(id).data(), hash_words(make(id).data(), words));
+      };
+      std::thread other(write, 1);
+      write(0);
+      other.join();
+      next += n;
+    }
+    EXPECT_EQ(index.unindexed(), next - 100);
+    EXPECT_EQ(index.index_appended(), PackedKeyIndex::kAbsent);
+    for (std::uint32_t i = 0; i < next; ++i) ASSERT_EQ(index.find(make(i).data()), i);
+    EXPECT_EQ(index.find(make(next).data()), PackedKeyIndex::kAbsent);
+    // A big array grown with headroom counts the pages written, not the capacity reserved.
+    EXPECT_LE(index.bytes(), HugePageAllocator<std::uint32_t>::round_up(std::size_t{4} * words * next) +
+                                 HugePageAllocator<std::uint64_t>::round_up(8 * (2 * std::size_t{next} + 2) * 2));
+  }
+}
+
+TEST(HugePageAllocator, GrowingWithHeadroomKeepsTheContents) {
+  UninitializedHugeVector<std::uint64_t> v;
+  std::size_t moves = 0;
+  for (std::uint64_t n = 1; n <= 3'000'000; n = n * 3 / 2 + 1) {
+    const std::size_t old = v.size();
+    const std::uint64_t* before = v.data();
+    grow_with_headroom(v, n);
+    moves += v.data() != before;
+    for (std::size_t i = old; i < n; ++i) v[i] = i * i;
+  }
+  for (std::size_t i = 0; i < v.size(); ++i) ASSERT_EQ(v[i], i * i);
+  EXPECT_LE(moves, 10u);  // 8 times the capacity per move: a few moves from 1 to 3 million
+  EXPECT_GE(v.capacity(), v.size());
+  EXPECT_LE(held_bytes(v), HugePageAllocator<std::uint64_t>::round_up(8 * v.size()));
 }
 
 // New hash tables rely on this: small blocks are zeroed by hand, big ones come zero-filled from the

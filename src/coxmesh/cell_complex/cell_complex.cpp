@@ -123,10 +123,10 @@ CellLevel next_level(const CellLevel& prev, int d, int l, WorkerPool& pool) {
 }  // namespace
 
 std::size_t CellComplex::bytes() const {
-  std::size_t b = (vertices.capacity() + boundary_vertices.capacity()) * sizeof(double);
+  std::size_t b = held_bytes(vertices) + held_bytes(boundary_vertices);
   for (const auto* levels : {&interior, &boundary})
     for (const CellLevel& l : *levels)
-      b += l.simplices.bytes() + 4 * (l.facet_offsets.capacity() + l.facet_ids.capacity() + l.boundary_facet.capacity());
+      b += l.simplices.bytes() + held_bytes(l.facet_offsets) + held_bytes(l.facet_ids) + held_bytes(l.boundary_facet);
   return b;
 }
 

@@ -32,7 +32,7 @@ struct CellLevel {
 struct CellComplex {
   int ambient_dimension = 0, manifold_dimension = 0;
   std::vector<CellLevel> interior, boundary;
-  HugeVector<double> vertices, boundary_vertices;
+  UninitializedHugeVector<double> vertices, boundary_vertices;
 
   std::size_t bytes() const;  ///< memory held, for reports
 };

@@ -11,7 +11,7 @@ std::uint32_t PackedKeyIndex::index_appended() {
   // insertion below probes next to the previous one, in one sweep over the table.
   const int bits = 32 - shift_;
   constexpr int kDigit = 11;
-  HugeVector<std::uint64_t> sorted(unindexed_.size());
+  UninitializedHugeVector<std::uint64_t> sorted(unindexed_.size());
   for (int low = 0; low < bits; low += kDigit) {
     const int width = std::min(kDigit, bits - low), from = 32 + shift_ + low;
     std::vector<std::uint32_t> start((std::size_t{1} << width) + 1, 0);

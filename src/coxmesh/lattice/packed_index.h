@@ -131,6 +131,22 @@ class PackedKeyIndex {
     unindexed_.push_back((hash >> 32 << 32) | (id + 1));
     return id;
   }
+  /// Appends n keys at once, to be written with set_appended() before any other use of the index
+  /// (by several threads at once if they write different ids: nothing else is touched). Returns
+  /// the first of their ids. The arrays grow here, the keys are copied in parallel by the caller.
+  std::uint32_t append_unindexed(std::size_t n) {
+    if (size_ + n > kMaxEntries) throw InputError("more than 2^31 - 1 entries in one index");
+    const std::uint32_t first = size_;
+    size_ += static_cast<std::uint32_t>(n);
+    grow_with_headroom(keys_, static_cast<std::size_t>(size_) * words_);
+    grow_with_headroom(unindexed_, unindexed_.size() + n);
+    return first;
+  }
+  /// Writes key `id` of the last append_unindexed(n).
+  void set_appended(std::uint32_t id, const std::uint32_t* key, std::uint64_t hash) {
+    std::copy_n(key, words_, keys_.data() + static_cast<std::size_t>(id) * words_);
+    unindexed_[unindexed_.size() - (size_ - id)] = (hash >> 32 << 32) | (id + 1);
+  }
   /// Keys appended and not indexed yet.
   std::size_t unindexed() const { return unindexed_.size(); }
   /// Indexes the appended keys, sorted by home slot so that the insertions sweep the table once
@@ -174,7 +190,7 @@ class PackedKeyIndex {
   }
 
   /// Bytes held (keys and slots), for memory reports.
-  std::size_t bytes() const { return keys_.capacity() * 4 + slots_.capacity() * 8; }
+  std::size_t bytes() const { return held_bytes(keys_) + held_bytes(slots_); }
   void reserve(std::size_t n) {
     if (n > kMaxEntries) throw InputError("more than 2^31 - 1 entries in one index");
     keys_.reserve(n * words_);
@@ -211,9 +227,9 @@ class PackedKeyIndex {
   std::uint32_t size_ = 0;
   std::size_t mask_ = 0;
   int shift_ = 32;
-  HugeVector<std::uint32_t> keys_;
+  UninitializedHugeVector<std::uint32_t> keys_;
   UninitializedHugeVector<std::uint64_t> slots_;
-  HugeVector<std::uint64_t> unindexed_;  // slot entries of appended keys, in id order
+  UninitializedHugeVector<std::uint64_t> unindexed_;  // slot entries of appended keys, in id order
 };
 
 }  // namespace coxmesh

@@ -183,6 +183,8 @@ class Tracer {
   void open_windows(Worker& worker) const;
   static std::uint32_t find_near(const Worker& worker, const std::uint32_t* key, std::uint64_t hash);
   void process_chunk(std::uint32_t chunk, std::uint32_t begin, std::uint32_t end, Worker& worker, ChunkOutput& out);
+  void fill(std::uint32_t begin, std::uint32_t end);
+  void fill_pending();
   Found classify_in_level(const Simplex& tau, std::uint32_t chunk, Worker& worker, ChunkOutput& out);
   void merge(std::size_t n_chunks);
 
@@ -191,8 +193,8 @@ class Tracer {
   const TraceOptions& options_;
   const int d_, k_;
   TraceResult result_;
-  HugeVector<double> domain_values_;  // D̂ at each point of S
-  HugeVector<std::uint64_t> arrivals_;  // per simplex of S: the cofacet it was discovered through
+  UninitializedHugeVector<double> domain_values_;    // D̂ at each point of S
+  UninitializedHugeVector<std::uint64_t> arrivals_;  // per simplex of S: the cofacet it was discovered through
   PackedKeyIndex others_;
   std::vector<std::uint32_t> other_payload_;  // kMiss, kOutsideBox or index into outside_
   std::vector<double> outside_;               // (d + 1) per transverse simplex outside: point, D̂
@@ -201,7 +203,12 @@ class Tracer {
   std::size_t last_progress_ = 0;
   std::vector<double> point_;
   std::vector<Worker> workers_;
-  std::vector<ChunkOutput> chunks_;
+  // The chunks' outputs of the last two levels: the merge appends level L + 1 to S without copying
+  // it, and the workers of level L + 1 copy each simplex in when they take its chunk (`fill`).
+  std::vector<ChunkOutput> chunks_[2];
+  int current_ = 0;                          // which of chunks_ the level being walked writes
+  std::vector<std::uint64_t> sources_;       // per simplex of S from `pending_.first`: chunk << 32 | row
+  std::pair<std::uint32_t, std::uint32_t> pending_{0, 0};  // ids of S appended and not copied in yet
   ChunkClaims claims_;
   std::vector<KeyRun> runs_;
   std::pair<std::uint32_t, std::uint32_t> level_, previous_level_;  // ids of S (parallel walk)
@@ -292,6 +299,7 @@ Tracer::Mark Tracer::mark() const {
 void Tracer::undo(const Mark& m) {
   const std::size_t n = m.simplices, b = m.boundary_simplices;
   head_ = level_end_ = m.head;
+  pending_ = {0, 0};
   result_.simplices.truncate(static_cast<std::uint32_t>(n));
   result_.points.resize(n * d_);
   domain_values_.resize(n);
@@ -335,7 +343,8 @@ void Tracer::open_windows(Worker& worker) const {
   const auto build = [&](int i, std::pair<std::uint32_t, std::uint32_t> range) {
     worker.near[i].clear();
     worker.near[i].reserve(range.second - range.first);
-    for (std::uint32_t id = range.first; id < range.second; ++id) worker.near[i].insert(result_.simplices.key(id));
+    for (std::uint32_t id = range.first; id < range.second; ++id)  // (a level not copied into S yet: see fill)
+      worker.near[i].insert(range == pending_ ? level_keys_.key(id - range.first) : result_.simplices.key(id));
     worker.near_range[i] = range;
   };
   if (worker.near_range[0] == previous_level_) {
@@ -358,7 +367,7 @@ std::uint32_t Tracer::find_near(const Worker& worker, const std::uint32_t* key, 
 bool Tracer::walk_parallel() {
   level_ = {head_, head_};
   while (head_ < result_.simplices.size()) {
-    if (!start_level()) return true;
+    if (!start_level()) return fill_pending(), true;
     const std::uint32_t begin = head_, end = level_end_;
     previous_level_ = level_;
     level_ = {begin, end};
@@ -367,24 +376,28 @@ bool Tracer::walk_parallel() {
     // its own share of consecutive chunks anyway. The result does not depend on the chunking.
     const std::uint32_t chunk = std::clamp<std::uint32_t>((end - begin) / (32 * workers_.size()), 16, 4096);
     const std::size_t n = (end - begin + chunk - 1) / chunk;
-    if (chunks_.size() < n) chunks_.resize(n);
+    std::vector<ChunkOutput>& outputs = chunks_[current_];
+    if (outputs.size() < n) outputs.resize(n);
     for (Worker& w : workers_) w.tested.clear(), w.payload.clear(), w.output_in.clear(), w.data.clear();
     if (!pool_) pool_ = std::make_unique<WorkerPool>(static_cast<int>(workers_.size()));
     claims_.reset(n, workers_.size());
     pool_->run(workers_.size(), [&](std::size_t share, int worker) {
       open_windows(workers_[worker]);
       for (std::size_t c; claims_.claim(share, c);) {
-        chunks_[c].clear();
-        const std::uint32_t a = begin + static_cast<std::uint32_t>(c) * chunk;
-        process_chunk(static_cast<std::uint32_t>(c), a, std::min(end, a + chunk), workers_[worker], chunks_[c]);
+        outputs[c].clear();
+        const std::uint32_t a = begin + static_cast<std::uint32_t>(c) * chunk, b = std::min(end, a + chunk);
+        fill(a, b);
+        process_chunk(static_cast<std::uint32_t>(c), a, b, workers_[worker], outputs[c]);
       }
     });
+    pending_ = {0, 0};  // (the workers copied the level in)
     merge(n);
     if (box_reached_.load()) result_.status = TraceStatus::box_reached;
     head_ = end;
-    if (4 * result_.simplices.unindexed() > 3 * result_.simplices.size() &&
-        result_.simplices.index_appended() != PackedKeyIndex::kAbsent)
-      return false;
+    if (4 * result_.simplices.unindexed() > 3 * result_.simplices.size()) {
+      fill_pending();
+      if (result_.simplices.index_appended() != PackedKeyIndex::kAbsent) return false;
+    }
   }
   return true;
 }
@@ -467,36 +480,64 @@ void Tracer::process_chunk(std::uint32_t chunk, std::uint32_t begin, std::uint32
 
 // Appends the level's discoveries to S in chunk order (the first occurrence of a simplex wins, as in
 // the sequential walk). The workers found none of them in the current or the previous level, so
-// they are only deduplicated among themselves, in a small index, and appended to S unindexed.
+// they are only deduplicated among themselves, in a small index, and appended to S unindexed. The
+// small index numbers the new simplices in order: S's arrays grow here, and each simplex is copied
+// in by the worker that takes it in the next level (fill), so that the copying and its page faults
+// are shared among the workers instead of waiting for one core.
 void Tracer::merge(std::size_t n_chunks) {
+  const std::vector<ChunkOutput>& outputs = chunks_[current_];
   runs_.clear();
   for (std::size_t c = 0; c < n_chunks; ++c) {
-    ChunkOutput& out = chunks_[c];
+    ChunkOutput& out = chunks_[current_][c];
     out.ids.resize(out.inside_hashes.size());
     runs_.push_back({out.inside_keys.data(), out.inside_hashes.data(), out.inside_hashes.size(), out.ids.data()});
   }
   level_keys_.clear();
   level_keys_.insert_runs(runs_);
+  const std::uint32_t added = level_keys_.size(), first = result_.simplices.append_unindexed(added);
+  const std::size_t size = std::size_t{first} + added;
+  grow_with_headroom(result_.points, size * d_);
+  grow_with_headroom(domain_values_, size);
+  grow_with_headroom(arrivals_, size);
+  sources_.resize(added);
+  for (std::size_t c = 0; c < n_chunks; ++c)
+    for (std::size_t r = 0; r < outputs[c].ids.size(); ++r)
+      if (const std::uint32_t id = outputs[c].ids[r]; id & PackedKeyIndex::kNewBit)
+        sources_[id & ~PackedKeyIndex::kNewBit] = c << 32 | r;
+  pending_ = {first, first + added};
   const int words = packed_words(d_);
   for (std::size_t c = 0; c < n_chunks; ++c) {
-    const ChunkOutput& out = chunks_[c];
-    for (std::size_t r = 0; r < out.ids.size(); ++r) {
-      if (!(out.ids[r] & PackedKeyIndex::kNewBit)) continue;
-      result_.simplices.append_unindexed(out.inside_keys.data() + r * words, out.inside_hashes[r]);
-      const double* p = out.inside_data.data() + r * (d_ + 1);
-      result_.points.insert(result_.points.end(), p, p + d_);
-      domain_values_.push_back(p[d_]);
-      arrivals_.push_back(out.inside_arrivals[r]);
-    }
-  }
-  for (std::size_t c = 0; c < n_chunks; ++c) {
-    const ChunkOutput& out = chunks_[c];
+    const ChunkOutput& out = outputs[c];
     for (std::size_t r = 0; r * words < out.boundary_keys.size(); ++r)
       if (result_.boundary_simplices.insert(out.boundary_keys.data() + r * words).second) {
         const double* p = out.boundary_points.data() + r * d_;
         result_.boundary_points.insert(result_.boundary_points.end(), p, p + d_);
       }
   }
+  current_ ^= 1;  // the next level keeps these outputs to copy from
+}
+
+// Copies the simplices of S with ids in [begin, end) that the last merge appended in from the
+// outputs they came from. Workers call it on disjoint ranges at once.
+void Tracer::fill(std::uint32_t begin, std::uint32_t end) {
+  begin = std::max(begin, pending_.first), end = std::min(end, pending_.second);
+  const std::vector<ChunkOutput>& outputs = chunks_[current_ ^ 1];
+  const int words = packed_words(d_);
+  for (std::uint32_t id = begin; id < end; ++id) {
+    const std::uint64_t source = sources_[id - pending_.first];
+    const ChunkOutput& out = outputs[source >> 32];
+    const std::size_t r = static_cast<std::uint32_t>(source);
+    result_.simplices.set_appended(id, out.inside_keys.data() + r * words, out.inside_hashes[r]);
+    const double* p = out.inside_data.data() + r * (d_ + 1);
+    std::copy_n(p, d_, result_.points.data() + static_cast<std::size_t>(id) * d_);
+    domain_values_[id] = p[d_];
+    arrivals_[id] = out.inside_arrivals[r];
+  }
+}
+
+void Tracer::fill_pending() {
+  fill(pending_.first, pending_.second);
+  pending_ = {0, 0};
 }
 
 void Tracer::add_seed(std::span<const double> seed, bool must_succeed) {

@@ -98,4 +98,24 @@ UninitializedHugeVector<T> zeroed_huge_vector(std::size_t n) {
   return v;
 }
 
+/// Memory held by a vector that only grew: its capacity, except for a big block, of which only the
+/// pages up to its size were ever written (the kernel backs the others on first write).
+template <class V>
+std::size_t held_bytes(const V& v) {
+  using T = typename V::value_type;
+  const std::size_t capacity = v.capacity() * sizeof(T);
+  if (capacity < HugePageAllocator<T>::kPage) return capacity;
+  return std::min(capacity, HugePageAllocator<T>::round_up(v.size() * sizeof(T)));
+}
+
+/// Resizes v to n elements; when v has to move, it reserves kHeadroom times its capacity. A move
+/// copies v serially, a big block's pages cost nothing until written: arrays that grow level after
+/// level while several threads wait (the parallel walk's) move less often.
+template <class V>
+void grow_with_headroom(V& v, std::size_t n) {
+  constexpr std::size_t kHeadroom = 8;
+  if (n > v.capacity()) v.reserve(std::max(n, kHeadroom * v.capacity()));
+  v.resize(n);
+}
+
 }  // namespace coxmesh
