@@ -92,7 +92,6 @@ class Tracer {
     result_.codimension = k_;
     result_.simplices = PackedKeyIndex(packed_words(d_));
     result_.boundary_simplices = PackedKeyIndex(packed_words(d_));
-    level_keys_ = PackedKeyIndex(packed_words(d_));
     for (IntersectionOracle* o : oracles) {
       const PackedKeyIndex empty(packed_words(d_));
       workers_.push_back(Worker{o, empty, {}, {}, {}, 0, {empty, empty}, {{0, 0}, {0, 0}}});
@@ -122,7 +121,6 @@ class Tracer {
   struct alignas(64) ChunkOutput {
     std::vector<std::uint32_t> inside_keys, boundary_keys;
     std::vector<std::uint64_t> inside_hashes, inside_arrivals;
-    std::vector<std::uint32_t> ids;  // merge: the S id of each inside simplex (| kNewBit if new)
     std::vector<double> inside_data, boundary_points;
     void clear() {
       inside_keys.clear(), boundary_keys.clear(), inside_hashes.clear(), inside_arrivals.clear(), inside_data.clear(),
@@ -183,6 +181,9 @@ class Tracer {
   void open_windows(Worker& worker) const;
   static std::uint32_t find_near(const Worker& worker, const std::uint32_t* key, std::uint64_t hash);
   void process_chunk(std::uint32_t chunk, std::uint32_t begin, std::uint32_t end, Worker& worker, ChunkOutput& out);
+  const std::uint32_t* source_key(const std::vector<ChunkOutput>& outputs, std::uint64_t source) const {
+    return outputs[source >> 32].inside_keys.data() + static_cast<std::uint32_t>(source) * packed_words(d_);
+  }
   void fill(std::uint32_t begin, std::uint32_t end);
   void fill_pending();
   Found classify_in_level(const Simplex& tau, std::uint32_t chunk, Worker& worker, ChunkOutput& out);
@@ -210,9 +211,8 @@ class Tracer {
   std::vector<std::uint64_t> sources_;       // per simplex of S from `pending_.first`: chunk << 32 | row
   std::pair<std::uint32_t, std::uint32_t> pending_{0, 0};  // ids of S appended and not copied in yet
   ChunkClaims claims_;
-  std::vector<KeyRun> runs_;
   std::pair<std::uint32_t, std::uint32_t> level_, previous_level_;  // ids of S (parallel walk)
-  PackedKeyIndex level_keys_;  // the merge's: the simplices of the level it appends to S
+  std::vector<std::uint64_t> firsts_;  // the merge's hash table: tag << 32 | 1 + index into sources_
   std::unique_ptr<WorkerPool> pool_;  // started by the first parallel level
   std::atomic<bool> box_reached_{false};
 };
@@ -344,7 +344,8 @@ void Tracer::open_windows(Worker& worker) const {
     worker.near[i].clear();
     worker.near[i].reserve(range.second - range.first);
     for (std::uint32_t id = range.first; id < range.second; ++id)  // (a level not copied into S yet: see fill)
-      worker.near[i].insert(range == pending_ ? level_keys_.key(id - range.first) : result_.simplices.key(id));
+      worker.near[i].insert(range == pending_ ? source_key(chunks_[current_ ^ 1], sources_[id - range.first])
+                                              : result_.simplices.key(id));
     worker.near_range[i] = range;
   };
   if (worker.near_range[0] == previous_level_) {
@@ -480,32 +481,45 @@ void Tracer::process_chunk(std::uint32_t chunk, std::uint32_t begin, std::uint32
 
 // Appends the level's discoveries to S in chunk order (the first occurrence of a simplex wins, as in
 // the sequential walk). The workers found none of them in the current or the previous level, so
-// they are only deduplicated among themselves, in a small index, and appended to S unindexed. The
-// small index numbers the new simplices in order: S's arrays grow here, and each simplex is copied
-// in by the worker that takes it in the next level (fill), so that the copying and its page faults
-// are shared among the workers instead of waiting for one core.
+// they are only deduplicated among themselves, in a small table of hash tags that reads a key only
+// when tags match (half the outputs were written by another core: every line read is a transfer),
+// and appended to S unindexed. S's arrays grow here; each simplex is copied in by the worker that
+// takes it in the next level (fill), so that the copying and its page faults are shared.
 void Tracer::merge(std::size_t n_chunks) {
   const std::vector<ChunkOutput>& outputs = chunks_[current_];
-  runs_.clear();
+  const int words = packed_words(d_);
+  std::size_t rows = 0;
+  for (std::size_t c = 0; c < n_chunks; ++c) rows += outputs[c].inside_hashes.size();
+  int bits = 4;
+  while ((std::size_t{1} << bits) < 2 * rows) ++bits;  // load ≤ 1/2
+  const std::size_t mask = (std::size_t{1} << bits) - 1;
+  firsts_.assign(mask + 1, 0);
+  sources_.clear();
   for (std::size_t c = 0; c < n_chunks; ++c) {
-    ChunkOutput& out = chunks_[current_][c];
-    out.ids.resize(out.inside_hashes.size());
-    runs_.push_back({out.inside_keys.data(), out.inside_hashes.data(), out.inside_hashes.size(), out.ids.data()});
+    const ChunkOutput& out = outputs[c];
+    for (std::size_t r = 0; r < out.inside_hashes.size(); ++r) {
+      const std::uint32_t tag = static_cast<std::uint32_t>(out.inside_hashes[r] >> 32);
+      const std::uint32_t* key = out.inside_keys.data() + r * words;
+      for (std::size_t s = tag >> (32 - bits);; s = (s + 1) & mask) {
+        const std::uint64_t slot = firsts_[s];
+        if (slot == 0) {
+          firsts_[s] = std::uint64_t{tag} << 32 | (sources_.size() + 1);
+          sources_.push_back(c << 32 | r);
+          break;
+        }
+        if (slot >> 32 == tag &&
+            std::equal(key, key + words, source_key(outputs, sources_[static_cast<std::uint32_t>(slot) - 1])))
+          break;  // output by an earlier chunk
+      }
+    }
   }
-  level_keys_.clear();
-  level_keys_.insert_runs(runs_);
-  const std::uint32_t added = level_keys_.size(), first = result_.simplices.append_unindexed(added);
+  const std::uint32_t added = static_cast<std::uint32_t>(sources_.size());
+  const std::uint32_t first = result_.simplices.append_unindexed(added);
   const std::size_t size = std::size_t{first} + added;
   grow_with_headroom(result_.points, size * d_);
   grow_with_headroom(domain_values_, size);
   grow_with_headroom(arrivals_, size);
-  sources_.resize(added);
-  for (std::size_t c = 0; c < n_chunks; ++c)
-    for (std::size_t r = 0; r < outputs[c].ids.size(); ++r)
-      if (const std::uint32_t id = outputs[c].ids[r]; id & PackedKeyIndex::kNewBit)
-        sources_[id & ~PackedKeyIndex::kNewBit] = c << 32 | r;
   pending_ = {first, first + added};
-  const int words = packed_words(d_);
   for (std::size_t c = 0; c < n_chunks; ++c) {
     const ChunkOutput& out = outputs[c];
     for (std::size_t r = 0; r * words < out.boundary_keys.size(); ++r)
