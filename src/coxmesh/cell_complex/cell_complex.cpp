@@ -11,22 +11,37 @@ namespace {
 
 // Facet lists from the incidences (cell << 32) | facet, in discovery order: a counting sort by
 // cell keeps each cell's facets in increasing order. Worker p sorts the p-th range of cells: it
-// reads every incidence and skips the other ranges', so no counter is written by two workers.
+// reads every incidence and skips the other ranges', so no counter is written by two workers. The
+// arrays are not zeroed beforehand: each worker writes its own range first (and takes its page
+// faults), and the prefix sums are per range, then shifted by the ranges before.
 void set_facets(CellLevel& level, std::span<const std::uint64_t> incidences, WorkerPool& pool) {
   const std::uint64_t n = level.size(), parts = static_cast<std::uint64_t>(pool.size());
+  const auto lo = [&](std::uint64_t p) { return n * p / parts; };
   const auto for_own_incidences = [&](std::uint64_t p, auto&& f) {
-    const std::uint64_t lo = n * p / parts, width = n * (p + 1) / parts - lo;
+    const std::uint64_t first = lo(p), width = lo(p + 1) - first;
     for (std::uint64_t e : incidences)
-      if ((e >> 32) - lo < width) f(e >> 32, static_cast<std::uint32_t>(e));
+      if ((e >> 32) - first < width) f(e >> 32, static_cast<std::uint32_t>(e));
   };
-  level.facet_offsets.assign(n + 1, 0);
-  std::uint32_t* count = level.facet_offsets.data() + 1;
-  pool.run(parts, [&](std::size_t p, int) { for_own_incidences(p, [&](std::uint64_t c, std::uint32_t) { ++count[c]; }); });
-  for (std::uint64_t c = 0; c < n; ++c) level.facet_offsets[c + 1] += level.facet_offsets[c];
-  level.facet_ids.resize(incidences.size());
-  UninitializedHugeVector<std::uint32_t> fill(level.facet_offsets.begin(), level.facet_offsets.end() - 1);
+  level.facet_offsets.resize(n + 1);
+  level.facet_offsets[0] = 0;
+  std::uint32_t* ends = level.facet_offsets.data() + 1;  // ends[c] = offsets[c + 1]
+  std::vector<std::uint64_t> totals(parts);
   pool.run(parts, [&](std::size_t p, int) {
-    for_own_incidences(p, [&](std::uint64_t c, std::uint32_t facet) { level.facet_ids[fill[c]++] = facet; });
+    std::fill(ends + lo(p), ends + lo(p + 1), 0u);
+    for_own_incidences(p, [&](std::uint64_t c, std::uint32_t) { ++ends[c]; });
+    std::uint64_t sum = 0;
+    for (std::uint64_t c = lo(p); c < lo(p + 1); ++c) ends[c] = static_cast<std::uint32_t>(sum += ends[c]);
+    totals[p] = sum;
+  });
+  level.facet_ids.resize(incidences.size());
+  pool.run(parts, [&](std::size_t p, int) {
+    std::uint64_t base = 0;
+    for (std::size_t q = 0; q < p; ++q) base += totals[q];
+    std::vector<std::uint32_t> next(lo(p + 1) - lo(p));  // where the next facet of each cell goes
+    for (std::uint64_t c = lo(p); c < lo(p + 1); ++c)  // (a cell starts where the one before ends)
+      next[c - lo(p)] = static_cast<std::uint32_t>(c == lo(p) ? base : ends[c - 1] + base);
+    for (std::uint64_t c = lo(p); c < lo(p + 1); ++c) ends[c] += static_cast<std::uint32_t>(base);
+    for_own_incidences(p, [&](std::uint64_t c, std::uint32_t facet) { level.facet_ids[next[c - lo(p)]++] = facet; });
   });
 }
 
@@ -156,12 +171,12 @@ CellComplex build_cell_complex(TraceResult&& trace, int threads) {
   if (has_boundary)
     for (int j = 1; j <= m; ++j) {
       CellLevel& level = cc.interior[j];
-      level.boundary_facet.assign(level.size(), CellLevel::kNone);
-      std::uint32_t key[packed_words(kMaxDimension)];
-      for (std::uint32_t c = 0; c < level.size(); ++c) {
-        std::copy(level.simplices.key(c), level.simplices.key(c) + packed_words(d), key);
-        level.boundary_facet[c] = cc.boundary[j - 1].simplices.find(key);
-      }
+      level.boundary_facet.resize(level.size());
+      const std::size_t n = level.size(), parts = static_cast<std::size_t>(pool.size());
+      pool.run(parts, [&](std::size_t p, int) {
+        for (std::size_t c = n * p / parts; c < n * (p + 1) / parts; ++c)
+          level.boundary_facet[c] = cc.boundary[j - 1].simplices.find(level.simplices.key(static_cast<std::uint32_t>(c)));
+      });
     }
   for (auto& l : cc.boundary)
     if (l.simplices.words() != packed_words(d)) l.simplices = PackedKeyIndex(packed_words(d));

@@ -13,12 +13,13 @@ namespace coxmesh {
 /// cells, k + 1 + j for boundary cells. Struct of arrays, 32-bit ids, CSR incidences.
 struct CellLevel {
   static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
-  PackedKeyIndex simplices{1};              ///< ambient simplex of each cell; id = cell id
-  HugeVector<std::uint32_t> facet_offsets{0};   ///< CSR: facets of c are facet_ids[offsets[c] .. offsets[c+1])
-  HugeVector<std::uint32_t> facet_ids;      ///< cells of dimension j − 1 of the same kind
+  // (arrays that the construction writes in full, by several threads: not zeroed first)
+  PackedKeyIndex simplices{1};                              ///< ambient simplex of each cell; id = cell id
+  UninitializedHugeVector<std::uint32_t> facet_offsets{0};  ///< CSR: facets of c are facet_ids[offsets[c] .. offsets[c+1])
+  UninitializedHugeVector<std::uint32_t> facet_ids;         ///< cells of dimension j − 1 of the same kind
   /// Interior cells (j ≥ 1) with a domain: the boundary cell of dimension j − 1 on the same
   /// simplex (it closes the cut polytope), or kNone. Empty without a domain.
-  HugeVector<std::uint32_t> boundary_facet;
+  UninitializedHugeVector<std::uint32_t> boundary_facet;
 
   std::uint32_t size() const { return simplices.size(); }
   std::span<const std::uint32_t> facets(std::uint32_t c) const {

@@ -30,7 +30,7 @@ struct Reader {
 
   [[noreturn]] void fail(const std::string& why) const { throw InputError(name + ": " + why); }
 
-  template <class T, class Vector = HugeVector<T>>
+  template <class T, class Vector = UninitializedHugeVector<T>>
   Vector array(std::size_t n, const char* what) {
     Vector v(n);
     if (n) in.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(n * sizeof(T)));
@@ -202,8 +202,8 @@ NativeFile read_native(std::istream& in, const std::string& name) {
       levels.push_back(std::move(level));
     }
   }
-  cc.vertices = r.array<double, UninitializedHugeVector<double>>(n0 * d, "vertices");
-  cc.boundary_vertices = r.array<double, UninitializedHugeVector<double>>(nb0 * d, "boundary vertices");
+  cc.vertices = r.array<double>(n0 * d, "vertices");
+  cc.boundary_vertices = r.array<double>(nb0 * d, "boundary vertices");
   for (const auto* xs : {&cc.vertices, &cc.boundary_vertices})
     for (double x : *xs)
       if (!std::isfinite(x)) r.fail("a vertex coordinate is NaN or infinite");
