@@ -1,8 +1,12 @@
 // PackedKeyIndex: growth by tags alone, and ordered batch insertion giving exactly the ids of
 // inserting the keys one after the other.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <fstream>
 #include <random>
 #include <thread>
 
@@ -172,6 +176,37 @@ TEST(HugePageAllocator, GrowingWithHeadroomKeepsTheContents) {
   EXPECT_LE(moves, 10u);  // 8 times the capacity per move: a few moves from 1 to 3 million
   EXPECT_GE(v.capacity(), v.size());
   EXPECT_LE(held_bytes(v), HugePageAllocator<std::uint64_t>::round_up(8 * v.size()));
+}
+
+// Where 8 times the capacity is more address space than the process may have, growth falls back to
+// the vector's own (in a child process with a limit on its address space).
+TEST(HugePageAllocator, GrowingWithHeadroomFallsBackWhenAddressSpaceIsShort) {
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+  GTEST_SKIP() << "sanitizers map address space of their own";
+#else
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    constexpr std::size_t kMiB = std::size_t{1} << 20;
+    UninitializedHugeVector<char> v(64 * kMiB);
+    std::ifstream statm("/proc/self/statm");
+    std::size_t pages = 0;
+    statm >> pages;
+    const rlim_t limit = pages * static_cast<std::size_t>(sysconf(_SC_PAGESIZE)) + 300 * kMiB;
+    const rlimit r{limit, limit};
+    if (setrlimit(RLIMIT_AS, &r) != 0) _exit(2);
+    try {
+      grow_with_headroom(v, 64 * kMiB + 1);  // 8 × 64 MiB does not fit under the limit, 2 × does
+    } catch (...) {
+      _exit(3);
+    }
+    _exit(v.size() == 64 * kMiB + 1 && v.capacity() < 512 * kMiB ? 0 : 1);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+#endif
 }
 
 // New hash tables rely on this: small blocks are zeroed by hand, big ones come zero-filled from the

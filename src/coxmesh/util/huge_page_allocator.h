@@ -110,11 +110,17 @@ std::size_t held_bytes(const V& v) {
 
 /// Resizes v to n elements; when v has to move, it reserves kHeadroom times its capacity. A move
 /// copies v serially, a big block's pages cost nothing until written: arrays that grow level after
-/// level while several threads wait (the parallel walk's) move less often.
+/// level while several threads wait (the parallel walk's) move less often. Where the system
+/// refuses that much address space, it grows as a vector does.
 template <class V>
 void grow_with_headroom(V& v, std::size_t n) {
   constexpr std::size_t kHeadroom = 8;
-  if (n > v.capacity()) v.reserve(std::max(n, kHeadroom * v.capacity()));
+  if (n > v.capacity() && n < kHeadroom * v.capacity() && kHeadroom * v.capacity() < v.max_size()) {
+    try {
+      v.reserve(kHeadroom * v.capacity());
+    } catch (const std::bad_alloc&) {  // (the vector is unchanged; resize below grows it normally)
+    }
+  }
   v.resize(n);
 }
 
