@@ -130,7 +130,7 @@ TEST(PackedKeyIndex, AppendedKeysAreIndexedAndDuplicatesReported) {
 
 // The parallel walk's bulk append: n ids at once, keys written afterwards in any order (here by two
 // threads, each taking every other id), then indexed like keys appended one by one.
-TEST(PackedKeyIndex, KeysAppendedInBulkAreWrittenInAnyOrder) {
+TEST(PackedKeyIndex, ParallelWritesOfKeysAppendedInBulk) {
   for (int words : {1, 4}) {
     PackedKeyIndex index(words);
     const auto make = [&](std::uint32_t i) {
