@@ -1,6 +1,8 @@
 // Thesis §4.3; spec §2.4: the cell complex by coface generation, level by level.
 #include "coxmesh/cell_complex/cell_complex.h"
 
+#include <atomic>
+
 #include "coxmesh/lattice/cofaces.h"
 #include "coxmesh/util/huge_page_allocator.h"
 #include "coxmesh/util/parallel_for.h"
@@ -51,7 +53,7 @@ void set_facets(CellLevel& level, std::span<const std::uint64_t> incidences, Wor
 // and hashed (a task per chunk); the batch is numbered, inserting its cofaces into the index in
 // order (one task: the only serial step); its incidences are written out (a task per chunk). A
 // parallel round numbers batch b while it enumerates batch b + 1 and writes out batch b − 1, with
-// three sets of buffers; the numbering task comes first, so it starts at once. The result is the
+// three sets of buffers; the numbering starts at once, on the core that enumerated the batch. The result is the
 // same for any number of workers; batches bound the extra memory.
 CellLevel next_level(const CellLevel& prev, int d, int l, WorkerPool& pool) {
   // Batches of up to 8192 cells, and at most 1/32 of the level: the three sets of buffers stay a
@@ -124,11 +126,17 @@ CellLevel next_level(const CellLevel& prev, int d, int l, WorkerPool& pool) {
       c.offset = incidences.size();
       incidences.resize(incidences.size() + c.ids.size());
     }
-    const std::size_t n_number = chunks_of(numbered) > 0 ? 1 : 0, n_enumerate = chunks_of(round);
-    pool.run(n_number + n_enumerate + chunks_of(written), [&](std::size_t t, int) {
-      if (t < n_number) return number(numbered);
-      if (t < n_number + n_enumerate) return enumerate(round, t - n_number);
-      write_out(written, t - n_number - n_enumerate);
+    // One lane per worker: the numbering lane numbers, then helps with the chunks. Lanes are taken
+    // in order, lane 0 by the calling thread as a rule, so with the numbering lane turning round by
+    // round a batch is mostly numbered by the worker that enumerated it: its keys are in that
+    // core's caches (numbering them on the other core cost 15 % more).
+    const std::size_t n_enumerate = chunks_of(round), n_chunks = n_enumerate + chunks_of(written);
+    const std::size_t lanes = static_cast<std::size_t>(pool.size()), numbering_lane = static_cast<std::size_t>(round) % lanes;
+    std::atomic<std::size_t> next_chunk{0};
+    pool.run(lanes, [&](std::size_t lane, int) {
+      if (lane == numbering_lane && chunks_of(numbered) > 0) number(numbered);
+      for (std::size_t t; (t = next_chunk.fetch_add(1)) < n_chunks;)
+        t < n_enumerate ? enumerate(round, t) : write_out(written, t - n_enumerate);
     });
   }
   set_facets(level, incidences, pool);
