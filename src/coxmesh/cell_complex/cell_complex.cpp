@@ -53,8 +53,8 @@ void set_facets(CellLevel& level, std::span<const std::uint64_t> incidences, Wor
 // and hashed (a task per chunk); the batch is numbered, inserting its cofaces into the index in
 // order (one task: the only serial step); its incidences are written out (a task per chunk). A
 // parallel round numbers batch b while it enumerates batch b + 1 and writes out batch b − 1, with
-// three sets of buffers; the numbering starts at once, on the core that enumerated the batch. The result is the
-// same for any number of workers; batches bound the extra memory.
+// three sets of buffers; the numbering starts at once, on the core that enumerated the batch. The
+// result is the same for any number of workers; batches bound the extra memory.
 CellLevel next_level(const CellLevel& prev, int d, int l, WorkerPool& pool) {
   // Batches of up to 8192 cells, and at most 1/32 of the level: the three sets of buffers stay a
   // small part of the memory of the complex.
@@ -131,7 +131,8 @@ CellLevel next_level(const CellLevel& prev, int d, int l, WorkerPool& pool) {
     // round a batch is mostly numbered by the worker that enumerated it: its keys are in that
     // core's caches (numbering them on the other core cost 15 % more).
     const std::size_t n_enumerate = chunks_of(round), n_chunks = n_enumerate + chunks_of(written);
-    const std::size_t lanes = static_cast<std::size_t>(pool.size()), numbering_lane = static_cast<std::size_t>(round) % lanes;
+    const std::size_t lanes = static_cast<std::size_t>(pool.size());
+    const std::size_t numbering_lane = static_cast<std::size_t>(round) % lanes;
     std::atomic<std::size_t> next_chunk{0};
     pool.run(lanes, [&](std::size_t lane, int) {
       if (lane == numbering_lane && chunks_of(numbered) > 0) number(numbered);
