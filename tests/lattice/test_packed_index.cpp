@@ -92,6 +92,15 @@ TEST(PackedKeyIndex, InsertRunsGivesTheIdsOfSequentialInsertion) {
 // Keys appended unindexed are found after index_appended(), with the table grown across several
 // doublings at once; a key appended although present is reported (the smallest such id), stays
 // unindexed, and the rest is indexed; truncate() forgets the later ids.
+namespace {
+// One key appended unindexed (the bulk append of one).
+std::uint32_t append_one(PackedKeyIndex& index, const std::uint32_t* key, std::uint64_t hash) {
+  const std::uint32_t id = index.append_unindexed(1);
+  index.set_appended(id, key, hash);
+  return id;
+}
+}  // namespace
+
 TEST(PackedKeyIndex, AppendedKeysAreIndexedAndDuplicatesReported) {
   std::mt19937_64 rng(5);
   for (int words : {1, 3}) {
@@ -102,7 +111,7 @@ TEST(PackedKeyIndex, AppendedKeysAreIndexedAndDuplicatesReported) {
       return key.data();
     };
     for (std::uint32_t i = 0; i < 1000; ++i) index.insert(make(i));
-    for (std::uint32_t i = 1000; i < 50000; ++i) ASSERT_EQ(index.append_unindexed(make(i), hash_words(make(i), words)), i);
+    for (std::uint32_t i = 1000; i < 50000; ++i) ASSERT_EQ(append_one(index, make(i), hash_words(make(i), words)), i);
     EXPECT_EQ(index.find(make(1500)), PackedKeyIndex::kAbsent);  // not indexed yet
     EXPECT_EQ(index.unindexed(), 49000u);
     EXPECT_EQ(index.index_appended(), PackedKeyIndex::kAbsent);
@@ -114,7 +123,7 @@ TEST(PackedKeyIndex, AppendedKeysAreIndexedAndDuplicatesReported) {
     std::shuffle(extra.begin(), extra.end(), rng);
     std::uint32_t first_duplicate = PackedKeyIndex::kAbsent;
     for (std::uint32_t i : extra) {
-      const std::uint32_t id = index.append_unindexed(make(i), hash_words(make(i), words));
+      const std::uint32_t id = append_one(index, make(i), hash_words(make(i), words));
       if (i < 50000) first_duplicate = std::min(first_duplicate, id);
     }
     EXPECT_EQ(index.index_appended(), first_duplicate);

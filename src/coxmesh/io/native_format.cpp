@@ -30,9 +30,9 @@ struct Reader {
 
   [[noreturn]] void fail(const std::string& why) const { throw InputError(name + ": " + why); }
 
-  template <class T, class Vector = UninitializedHugeVector<T>>
-  Vector array(std::size_t n, const char* what) {
-    Vector v(n);
+  template <class T>
+  UninitializedHugeVector<T> array(std::size_t n, const char* what) {
+    UninitializedHugeVector<T> v(n);
     if (n) in.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(n * sizeof(T)));
     if (!in) fail(std::string("truncated file (reading ") + what + ")");
     return v;

@@ -120,20 +120,12 @@ class PackedKeyIndex {
       }
   }
 
-  /// Appends a key that the caller knows to be absent, without indexing it yet: it gets the next
-  /// id and key(id) works at once, but find() and insert() do not see it until index_appended().
-  /// For loads of keys deduplicated elsewhere (the parallel walk's levels): one pass over the table
-  /// in slot order at the end instead of a random access per key.
-  std::uint32_t append_unindexed(const std::uint32_t* key, std::uint64_t hash) {
-    if (size_ >= kMaxEntries) throw InputError("more than 2^31 - 1 entries in one index");
-    const std::uint32_t id = size_++;
-    keys_.insert(keys_.end(), key, key + words_);
-    unindexed_.push_back((hash >> 32 << 32) | (id + 1));
-    return id;
-  }
-  /// Appends n keys at once, to be written with set_appended() before any other use of the index
-  /// (by several threads at once if they write different ids: nothing else is touched). Returns
-  /// the first of their ids. The arrays grow here, the keys are copied in parallel by the caller.
+  /// Appends n keys that the caller knows to be absent, without indexing them yet: they get the
+  /// next ids, to be written with set_appended() before any other use of the index (by several
+  /// threads at once if they write different ids: nothing else is touched); then key(id) works,
+  /// but find() and insert() do not see them until index_appended(). For loads of keys
+  /// deduplicated elsewhere (the parallel walk's levels): one pass over the table in slot order
+  /// instead of a random access per key. Returns the first of their ids.
   std::uint32_t append_unindexed(std::size_t n) {
     if (size_ + n > kMaxEntries) throw InputError("more than 2^31 - 1 entries in one index");
     const std::uint32_t first = size_;
