@@ -108,7 +108,7 @@ void run(TraceCliOptions o) {
     for (const CLI::Option* opt : o.preset_only)
       if (opt->count()) throw InputError(opt->get_name() + " is a preset parameter; it does not apply to --function");
   if (!from_text && !o.center.empty()) o.params.center = parse_point(o.center, "--center");
-  auto make_problem = [&o, from_text]() -> std::pair<FunctionPtr, FunctionPtr> {
+  std::function<std::pair<FunctionPtr, FunctionPtr>()> make_problem = [&o, from_text]() -> std::pair<FunctionPtr, FunctionPtr> {
     FunctionPtr f, domain;
     if (from_text) {
       f = expression_function(o.function, o.params.dim);
@@ -169,7 +169,17 @@ void run(TraceCliOptions o) {
       if (!(box.lo[i] < box.hi[i])) throw InputError("--box: lo must be below hi in every coordinate");
     search_box = box;
   }
-  if (!o.box.empty() || from_text) options.box = search_box;  // equations: the default box bounds the walk
+  // The box bounds the walk as a domain (cells along it are closed): when given, and for equations
+  // whose seeds are searched in the default box. Seeds given by hand: their whole components.
+  const bool bounded_by_box = !o.box.empty() || (from_text && o.seeds.empty());
+  if (bounded_by_box) {
+    FunctionPtr box = box_domain(search_box);
+    domain = intersect_domains(domain, box);
+    make_problem = [inner = make_problem, box] {
+      auto [fw, dw] = inner();
+      return std::pair{fw, intersect_domains(dw, box)};
+    };
+  }
   if (from_text) {  // default scale: 40 edges across the narrowest side of the box
     default_edge = search_box.hi[0] - search_box.lo[0];
     for (int i = 1; i < d; ++i) default_edge = std::min(default_edge, search_box.hi[i] - search_box.lo[i]);

@@ -28,9 +28,12 @@ nlohmann::json topology_json(const CellComplex& cc, const TopologyReport& topo) 
   j["boundary_simplices"] = cc.boundary.empty() ? 0 : cc.boundary[0].size();
   j["cells"] = topo.cells;
   j["boundary_cells"] = topo.boundary_cells;
-  j["euler_characteristic"] = topo.euler_characteristic;
-  j["betti"] = topo.betti;
-  j["components"] = topo.betti.empty() ? 0 : topo.betti[0];
+  j["closed"] = topo.closed;
+  if (topo.closed) {  // the topology of an open complex would be wrong: none is reported
+    j["euler_characteristic"] = topo.euler_characteristic;
+    j["betti"] = topo.betti;
+    j["components"] = topo.betti.empty() ? 0 : topo.betti[0];
+  }
   j["is_manifold"] = topo.is_manifold;
   if (!topo.is_manifold) j["manifold_problem"] = topo.manifold_problem;
   j["cell_complex_bytes"] = cc.bytes();
@@ -43,9 +46,13 @@ void print_topology(std::ostream& os, const CellComplex& cc, const TopologyRepor
   os << "  traced simplices   " << n << " (" << nb << " on the boundary)\n"
      << "  cells by dimension " << number_list(topo.cells);
   if (nb) os << "  (boundary: " << number_list(topo.boundary_cells) << ")";
-  os << "\n  Euler characteristic " << topo.euler_characteristic << ", Betti numbers (Z/2) " << number_list(topo.betti)
-     << "\n  components         " << (topo.betti.empty() ? 0 : topo.betti[0]) << "\n"
-     << "  manifold check     " << (topo.is_manifold ? "passed" : "FAILED: " + topo.manifold_problem) << "\n";
+  os << "\n";
+  if (topo.closed)
+    os << "  Euler characteristic " << topo.euler_characteristic << ", Betti numbers (Z/2) " << number_list(topo.betti)
+       << "\n  components         " << (topo.betti.empty() ? 0 : topo.betti[0]) << "\n";
+  else
+    os << "  topology           not computed: " << topo.manifold_problem << "\n";
+  os << "  manifold check     " << (topo.is_manifold ? "passed" : "FAILED: " + topo.manifold_problem) << "\n";
 }
 
 }  // namespace coxmesh::cli

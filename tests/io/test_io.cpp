@@ -176,6 +176,26 @@ TEST(NativeFormat, RejectsDamagedFiles) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("damaged.cxm"), std::string::npos) << e.what();
   }
+  // Incidences that contradict the face relation: an edge whose two end points are the same vertex
+  // (a reduction over it never ends), and an edge listing a vertex cell that is not a face of it.
+  std::uint32_t f0, f1;
+  std::memcpy(&f0, bytes.data() + first_facet, 4);
+  std::memcpy(&f1, bytes.data() + first_facet + 4, 4);
+  bad = bytes;
+  std::memcpy(bad.data() + first_facet + 4, &f0, 4);
+  EXPECT_THROW(read(bad), InputError) << "an edge with the same end point twice";
+  for (std::uint32_t other = 0; other < n0; ++other) {
+    if (other == f0 || other == f1) continue;
+    bad = bytes;
+    std::memcpy(bad.data() + first_facet + 4, &other, 4);
+    try {
+      read(bad);
+    } catch (const InputError&) {
+      continue;  // a vertex cell that is not a face of the edge's simplex
+    }
+    ADD_FAILURE() << "an edge accepted with end point " << other;
+    break;
+  }
   // A key that is not a simplex (a block label beyond k).
   bad = bytes;
   bad[header_end + 4 * 3] = 7;

@@ -222,13 +222,38 @@ TEST(TraceManifold, BadInputGivesClearErrors) {
     EXPECT_NE(r.message.find("unbounded"), std::string::npos);
     EXPECT_GE(r.simplices.size(), 2000u);
   }
-  {  // a box stops the walk
+  {  // a box is a domain: the half sphere it cuts out is a closed disk (χ = 1, Betti 1 0 0)
+    ImplicitOracle oracle(t3, s2, box_domain(Box{{0, -2, -2}, {2, 2, 2}}));
+    TraceResult r = trace_manifold(t3, oracle, {s2->seed()});
+    EXPECT_EQ(r.status, TraceStatus::complete);
+    EXPECT_GT(r.boundary_simplices.size(), 0u);
+    for (std::uint32_t i = 0; i < r.simplices.size(); ++i) EXPECT_GE(r.points[3 * i], 0.0);
+    const TopologyReport topo = analyze_topology(build_cell_complex(std::move(r)));
+    EXPECT_TRUE(topo.is_manifold) << topo.manifold_problem;
+    EXPECT_EQ(topo.betti, (std::vector<std::size_t>{1, 0, 0}));
+  }
+  {  // a walk stopped by the limit is open at its front: no Betti numbers, never wrong ones
     ImplicitOracle oracle(t3, s2);
     TraceOptions options;
-    options.box = Box{{0, -2, -2}, {2, 2, 2}};
-    const TraceResult r = trace_manifold(t3, oracle, {s2->seed()}, options);
-    EXPECT_EQ(r.status, TraceStatus::box_reached);
-    for (std::uint32_t i = 0; i < r.simplices.size(); ++i) EXPECT_GE(r.points[3 * i], 0.0);
+    options.max_simplices = 100;
+    TraceResult r = trace_manifold(t3, oracle, {s2->seed()}, options);
+    EXPECT_EQ(r.status, TraceStatus::max_simplices_reached);
+    const TopologyReport topo = analyze_topology(build_cell_complex(std::move(r)));
+    EXPECT_FALSE(topo.closed);
+    EXPECT_FALSE(topo.is_manifold);
+    EXPECT_TRUE(topo.betti.empty());
+  }
+  {  // a polygon whose edges do not close up (one edge swapped for another): no Betti numbers either
+    ImplicitOracle oracle(t3, s2);
+    CellComplex cc = build_cell_complex(trace_manifold(t3, oracle, {s2->seed()}));
+    ASSERT_TRUE(analyze_topology(cc).closed);
+    CellLevel& faces = cc.interior[2];
+    const std::uint32_t first = faces.facet_ids[faces.facet_offsets[0]];
+    faces.facet_ids[faces.facet_offsets[0]] = first == 0 ? 1 : first - 1;
+    const TopologyReport topo = analyze_topology(cc);
+    EXPECT_FALSE(topo.closed);
+    EXPECT_TRUE(topo.betti.empty());
+    EXPECT_NE(topo.manifold_problem.find("not closed"), std::string::npos) << topo.manifold_problem;
   }
   // Dimension mismatches.
   EXPECT_THROW(ImplicitOracle(Triangulation::coxeter(4), s2), InputError);

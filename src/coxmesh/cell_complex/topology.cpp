@@ -18,16 +18,73 @@ std::vector<std::uint32_t> coface_counts(const CellLevel& lower, const CellLevel
   return count;
 }
 
+// The cells of dimension j of both kinds, numbered one after the other: interior cells first.
+struct GlobalIds {
+  std::vector<std::size_t> interior, boundary;  // first global id of each level
+  std::size_t count = 0;
+  explicit GlobalIds(const CellComplex& cc) {
+    const int m = cc.manifold_dimension;
+    for (int j = 0; j <= m; ++j) {
+      interior.push_back(count);
+      count += cc.interior[j].size();
+      boundary.push_back(count);
+      if (j < static_cast<int>(cc.boundary.size())) count += cc.boundary[j].size();
+    }
+  }
+};
+
+// Appends the global ids of the facets of cell c of level j (interior or boundary).
+void append_facets(const CellComplex& cc, const GlobalIds& ids, bool boundary, int j, std::uint32_t c,
+                   std::vector<std::size_t>& out) {
+  const CellLevel& level = boundary ? cc.boundary[j] : cc.interior[j];
+  const std::size_t base = boundary ? ids.boundary[j - 1] : ids.interior[j - 1];
+  for (std::uint32_t f : level.facets(c)) out.push_back(base + f);
+  if (!boundary && !level.boundary_facet.empty() && level.boundary_facet[c] != CellLevel::kNone)
+    out.push_back(ids.boundary[j - 1] + level.boundary_facet[c]);
+}
+
+// A complex whose Betti numbers mean something: every edge cell has two end points and the
+// boundary of the boundary of every cell vanishes over Z/2 (each ridge of a polytope lies in an even
+// number of its facets). A walk cut short leaves open cells at its front (an edge with one end);
+// their homology would be meaningless (e.g. no component at all), so it is not computed.
+std::string check_closed(const CellComplex& cc) {
+  const GlobalIds ids(cc);
+  std::vector<std::size_t> facets, ridges;
+  for (int kind = 0; kind < 2; ++kind) {
+    const auto& levels = kind ? cc.boundary : cc.interior;
+    for (int j = 1; j < static_cast<int>(levels.size()); ++j)
+      for (std::uint32_t c = 0; c < levels[j].size(); ++c) {
+        facets.clear();
+        append_facets(cc, ids, kind == 1, j, c, facets);
+        if (j == 1) {
+          if (facets.size() != 2 || facets[0] == facets[1])
+            return std::string(kind ? "a boundary" : "an") + " edge cell has " + std::to_string(facets.size()) +
+                   " end points";
+          continue;
+        }
+        ridges.clear();
+        for (std::size_t g : facets) {
+          const bool on_boundary = g >= ids.boundary[j - 1];
+          const std::size_t local = g - (on_boundary ? ids.boundary[j - 1] : ids.interior[j - 1]);
+          append_facets(cc, ids, on_boundary, j - 1, static_cast<std::uint32_t>(local), ridges);
+        }
+        std::sort(ridges.begin(), ridges.end());
+        for (std::size_t i = 0; i < ridges.size();) {
+          std::size_t e = i;
+          while (e < ridges.size() && ridges[e] == ridges[i]) ++e;
+          if ((e - i) % 2) return "a " + std::to_string(j) + "-cell is not closed (a face of its boundary is not shared)";
+          i = e;
+        }
+      }
+  }
+  return "";
+}
+
 std::string check_manifold(const CellComplex& cc) {
   const int m = cc.manifold_dimension;
   const auto& in = cc.interior;
   const auto& bd = cc.boundary;
-  if (m >= 1)
-    for (std::uint32_t c = 0; c < in[1].size(); ++c) {
-      const std::size_t ends = in[1].facets(c).size() +
-                               (in[1].boundary_facet.empty() || in[1].boundary_facet[c] == CellLevel::kNone ? 0 : 1);
-      if (ends != 2) return "an edge cell has " + std::to_string(ends) + " end points";
-    }
+  // (edge cells have two end points: the complex is closed)
   for (int j = 0; j < m; ++j) {
     const auto count = coface_counts(in[j], in[j + 1]);
     for (std::uint32_t c = 0; c < count.size(); ++c) {
@@ -50,14 +107,10 @@ std::string check_manifold(const CellComplex& cc) {
 std::vector<std::size_t> betti_numbers(const CellComplex& cc) {
   const int m = cc.manifold_dimension;
   // Global order: by dimension; within dimension j, interior cells then boundary cells.
-  std::vector<std::size_t> in_base(m + 1), bd_base(m + 1);
-  std::size_t n = 0;
-  for (int j = 0; j <= m; ++j) {
-    in_base[j] = n;
-    n += cc.interior[j].size();
-    bd_base[j] = n;
-    if (j < static_cast<int>(cc.boundary.size())) n += cc.boundary[j].size();
-  }
+  const GlobalIds ids(cc);
+  const std::vector<std::size_t>& in_base = ids.interior;
+  const std::vector<std::size_t>& bd_base = ids.boundary;
+  const std::size_t n = ids.count;
   // full_pivot_column: bit_tree_pivot_column negates INT64_MIN, which UBSan rejects.
   phat::boundary_matrix<phat::full_pivot_column> matrix;
   matrix.set_num_cols(static_cast<phat::index>(n));
@@ -114,9 +167,11 @@ TopologyReport analyze_topology(const CellComplex& cc, bool compute_betti) {
     r.boundary_cells.push_back(n);
     r.euler_characteristic += (j % 2 ? -1LL : 1LL) * static_cast<long long>(n);
   }
-  r.manifold_problem = cc.interior[0].size() == 0 ? "the complex is empty" : check_manifold(cc);
+  if (cc.interior[0].size() == 0) r.manifold_problem = "the complex is empty";
+  else if (const std::string open = check_closed(cc); !open.empty()) r.manifold_problem = "not a closed complex: " + open;
+  else r.closed = true, r.manifold_problem = check_manifold(cc);
   r.is_manifold = r.manifold_problem.empty();
-  if (compute_betti) r.betti = betti_numbers(cc);
+  if (compute_betti && r.closed) r.betti = betti_numbers(cc);
   return r;
 }
 

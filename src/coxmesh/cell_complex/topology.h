@@ -12,13 +12,15 @@ struct TopologyReport {
   std::vector<std::size_t> cells;           ///< interior cells per dimension 0..m
   std::vector<std::size_t> boundary_cells;  ///< boundary cells per dimension 0..m−1
   long long euler_characteristic = 0;       ///< of the whole complex
-  std::vector<std::size_t> betti;           ///< Z/2 Betti numbers of the whole complex, 0..m
+  std::vector<std::size_t> betti;           ///< Z/2 Betti numbers of the whole complex, 0..m; empty unless closed
+  bool closed = false;                      ///< every cell's boundary is a cycle (edge cells have two ends)
   bool is_manifold = false;
   std::string manifold_problem;             ///< the first violation found (empty if a manifold)
 };
 
 /// Euler characteristic and counts are O(cells); Betti numbers by Z/2 column reduction (PHAT,
-/// twist reduction) of the boundary matrix of all cells ordered by dimension. The manifold check:
+/// twist reduction) of the boundary matrix of all cells ordered by dimension, only for a closed
+/// complex (a walk stopped by a limit leaves open cells at its front). The manifold check:
 /// every interior 1-cell has 2 end points (interior or boundary vertices), every interior
 /// (m−1)-cell lies in exactly 2 m-cells, every boundary (m−2)-cell in exactly 2 boundary
 /// (m−1)-cells, and every cell of dimension < m lies in some cell of the next dimension.

@@ -1,10 +1,13 @@
 // The native .cxm format: JSON header line, then little-endian arrays; see native_format.h.
 #include "coxmesh/io/native_format.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
+
+#include "coxmesh/lattice/faces.h"
 
 namespace coxmesh {
 
@@ -193,13 +196,33 @@ NativeFile read_native(std::istream& in, const std::string& name) {
       const std::uint64_t below = j == 0 ? 0 : levels[j - 1].size();
       for (std::uint32_t id : level.facet_ids)
         if (id >= below) r.fail("a facet id is out of range");
-      if (!level.boundary_facet.empty()) {
-        if (kind != 0 || j == 0) r.fail("boundary facets are only allowed on interior levels j >= 1");
-        const std::uint64_t bd = shapes[1].size() > j - 1 ? shapes[1][j - 1][0] : 0;
-        for (std::uint32_t id : level.boundary_facet)
-          if (id != CellLevel::kNone && id >= bd) r.fail("a boundary facet id is out of range");
+      // Every incidence must be one of the face relation: distinct facets, each the cell of a facet
+      // of the cell's simplex (anything else would make the topology meaningless, or its reduction loop).
+      for (std::uint64_t c = 0; j > 0 && c < n; ++c) {
+        const auto facets = level.facets(static_cast<std::uint32_t>(c));
+        const Simplex cell = level.simplices.simplex(static_cast<std::uint32_t>(c), d);
+        for (std::size_t a = 0; a < facets.size(); ++a) {
+          if (std::find(facets.begin(), facets.begin() + a, facets[a]) != facets.begin() + a)
+            r.fail("cell " + std::to_string(c) + " of a level lists the same facet twice");
+          if (!is_face_of(levels[j - 1].simplices.simplex(facets[a], d), cell))
+            r.fail("cell " + std::to_string(c) + " of a level lists a facet that is not a face of it");
+        }
       }
+      if (!level.boundary_facet.empty() && (kind != 0 || j == 0))
+        r.fail("boundary facets are only allowed on interior levels j >= 1");
       levels.push_back(std::move(level));
+    }
+  }
+  // The boundary facet of an interior cell is the boundary cell on the same simplex.
+  for (std::size_t j = 1; j < cc.interior.size(); ++j) {
+    const CellLevel& level = cc.interior[j];
+    for (std::uint32_t c = 0; c < level.boundary_facet.size(); ++c) {
+      const std::uint32_t id = level.boundary_facet[c];
+      if (id == CellLevel::kNone) continue;
+      if (j - 1 >= cc.boundary.size() || id >= cc.boundary[j - 1].size()) r.fail("a boundary facet id is out of range");
+      const std::uint32_t* key = cc.boundary[j - 1].simplices.key(id);
+      if (!std::equal(key, key + words, level.simplices.key(c)))
+        r.fail("cell " + std::to_string(c) + " of a level has a boundary facet on another simplex");
     }
   }
   cc.vertices = r.array<double>(n0 * d, "vertices");

@@ -2,7 +2,9 @@
 #include "coxmesh/oracle/implicit_function.h"
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace coxmesh {
 
@@ -181,6 +183,25 @@ FunctionPtr half_space_domain(const std::vector<double>& normal, double c) {
   return make_function(d, 1, [n = normal, c, d](const double* x, double* v) {
     double s = -c;
     for (int i = 0; i < d; ++i) s += n[i] * x[i];
+    v[0] = s;
+  }, {});
+}
+
+bool Box::contains(const double* x) const {
+  for (std::size_t i = 0; i < lo.size(); ++i)
+    if (!(x[i] >= lo[i] && x[i] <= hi[i])) return false;
+  return true;
+}
+
+FunctionPtr box_domain(const Box& box) {
+  const int d = static_cast<int>(box.lo.size());
+  if (box.hi.size() != box.lo.size()) throw InputError("a box needs as many upper as lower bounds");
+  for (int i = 0; i < d; ++i)
+    if (!(box.lo[i] < box.hi[i]) || !std::isfinite(box.lo[i]) || !std::isfinite(box.hi[i]))
+      throw InputError("a box needs finite bounds with lo < hi in every coordinate");
+  return make_function(d, 1, [box, d](const double* x, double* v) {
+    double s = -std::numeric_limits<double>::infinity();
+    for (int i = 0; i < d; ++i) s = std::max({s, box.lo[i] - x[i], x[i] - box.hi[i]});
     v[0] = s;
   }, {});
 }

@@ -81,6 +81,14 @@ FunctionPtr translate(FunctionPtr f, const Eigen::VectorXd& b);
 FunctionPtr negation(FunctionPtr f);
 
 // ---- Domains (codimension 1, inside where < 0) --------------------------------------------------
+/// An axis-parallel box [lo, hi] of R^d.
+struct Box {
+  std::vector<double> lo, hi;  ///< d coordinates each, lo < hi
+  bool contains(const double* x) const;
+};
+/// max_i max(lo_i − x_i, x_i − hi_i): the open box. A box bounds a walk as any domain does, so the
+/// cells along its faces are closed and the output is a manifold with boundary.
+FunctionPtr box_domain(const Box& box);
 /// |x − c|² − r²: the open ball.
 FunctionPtr ball_domain(const std::vector<double>& center, double radius);
 /// ⟨n, x⟩ − c: the half-space ⟨n, x⟩ < c.

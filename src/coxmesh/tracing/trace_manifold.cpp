@@ -15,12 +15,6 @@
 
 namespace coxmesh {
 
-bool Box::contains(const double* x) const {
-  for (std::size_t i = 0; i < lo.size(); ++i)
-    if (!(x[i] >= lo[i] && x[i] <= hi[i])) return false;
-  return true;
-}
-
 namespace {
 
 std::string point_text(std::span<const double> x) {
@@ -37,7 +31,6 @@ enum class Kind : std::uint8_t {
   miss,     // not transverse
   inside,   // transverse inside the domain: in S
   outside,  // transverse, D̂ ≥ 0 at its point: its cofacets cross the boundary
-  clipped,  // transverse, its point outside the box: not followed
 };
 struct Found {
   Kind kind;
@@ -81,7 +74,7 @@ Found other_transverse_facet(IntersectionOracle& oracle, bool pivots, const Simp
 }
 
 // Tracing state: S lives in the result; every other tested k-simplex is remembered in `others_`
-// (not transverse, outside the box, or transverse outside the domain with its point), so the
+// (not transverse, or transverse outside the domain with its point), so the
 // oracle sees each k-simplex at most once.
 class Tracer {
  public:
@@ -109,7 +102,7 @@ class Tracer {
   }
 
  private:
-  static constexpr std::uint32_t kMiss = 0xFFFFFFFFu, kOutsideBox = 0xFFFFFFFEu;
+  static constexpr std::uint32_t kMiss = 0xFFFFFFFFu;
 
   Found classify(const Simplex& tau);
   void add_boundary(const Simplex& mu, std::uint32_t inside, const double* outside);
@@ -132,7 +125,7 @@ class Tracer {
   struct alignas(64) Worker {
     IntersectionOracle* oracle;
     PackedKeyIndex tested;
-    std::vector<std::uint32_t> payload;  // kMiss, kOutsideBox, or index into data
+    std::vector<std::uint32_t> payload;  // kMiss or index into data
     std::vector<std::uint32_t> output_in;  // per tested simplex inside: the first chunk that output it
     std::vector<double> data;            // (d + 1) per transverse simplex: point, D̂
     std::uint64_t calls;
@@ -197,7 +190,7 @@ class Tracer {
   UninitializedHugeVector<double> domain_values_;    // D̂ at each point of S
   UninitializedHugeVector<std::uint64_t> arrivals_;  // per simplex of S: the cofacet it was discovered through
   PackedKeyIndex others_;
-  std::vector<std::uint32_t> other_payload_;  // kMiss, kOutsideBox or index into outside_
+  std::vector<std::uint32_t> other_payload_;  // kMiss or index into outside_
   std::vector<double> outside_;               // (d + 1) per transverse simplex outside: point, D̂
   std::uint32_t head_ = 0;                    // S[head_..] is the breadth-first queue
   std::uint32_t level_end_ = 0;               // end of the current breadth-first level
@@ -214,7 +207,6 @@ class Tracer {
   std::pair<std::uint32_t, std::uint32_t> level_, previous_level_;  // ids of S (parallel walk)
   std::vector<std::uint64_t> firsts_;  // the merge's hash table: tag << 32 | 1 + index into sources_
   std::unique_ptr<WorkerPool> pool_;  // started by the first parallel level
-  std::atomic<bool> box_reached_{false};
 };
 
 Found Tracer::classify(const Simplex& tau) {
@@ -225,17 +217,14 @@ Found Tracer::classify(const Simplex& tau) {
   if (std::uint32_t id = result_.simplices.find(key, h, slot); id != PackedKeyIndex::kAbsent) return {Kind::inside, id};
   if (std::uint32_t id = others_.find(key, h); id != PackedKeyIndex::kAbsent) {
     const std::uint32_t p = other_payload_[id];
-    return p == kMiss ? Found{Kind::miss, 0} : p == kOutsideBox ? Found{Kind::clipped, 0} : Found{Kind::outside, p};
+    return p == kMiss ? Found{Kind::miss, 0} : Found{Kind::outside, p};
   }
   ++workers_[0].calls;
   point_.resize(d_);
   const Intersection x = oracle_.intersect(tau, point_.data());
   std::uint32_t payload = kMiss;
   if (x.hit) {
-    if (options_.box && !options_.box->contains(point_.data())) {
-      payload = kOutsideBox;
-      result_.status = TraceStatus::box_reached;
-    } else if (x.domain < 0) {
+    if (x.domain < 0) {
       const std::uint32_t id = result_.simplices.insert_at(slot, key, h);
       result_.points.insert(result_.points.end(), point_.begin(), point_.end());
       domain_values_.push_back(x.domain);
@@ -249,7 +238,7 @@ Found Tracer::classify(const Simplex& tau) {
   }
   others_.insert(key, h);
   other_payload_.push_back(payload);
-  return payload == kMiss ? Found{Kind::miss, 0} : payload == kOutsideBox ? Found{Kind::clipped, 0} : Found{Kind::outside, payload};
+  return payload == kMiss ? Found{Kind::miss, 0} : Found{Kind::outside, payload};
 }
 
 // μ ∩ M̂ is the segment between the points of its two transverse facets; D̂ is linear on it, so the
@@ -308,7 +297,6 @@ void Tracer::undo(const Mark& m) {
   result_.boundary_points.resize(b * d_);
   last_progress_ = m.last_progress;
   result_.status = m.status;
-  box_reached_.store(false);
 }
 
 void Tracer::walk_sequential() {
@@ -393,7 +381,6 @@ bool Tracer::walk_parallel() {
     });
     pending_ = {0, 0};  // (the workers copied the level in)
     merge(n);
-    if (box_reached_.load()) result_.status = TraceStatus::box_reached;
     head_ = end;
     if (4 * result_.simplices.unindexed() > 3 * result_.simplices.size()) {
       fill_pending();
@@ -429,10 +416,7 @@ Found Tracer::classify_in_level(const Simplex& tau, std::uint32_t chunk, Worker&
     const Intersection x = worker.oracle->intersect(tau, found);
     found[d_] = x.domain;
     std::uint32_t payload = kMiss;
-    if (x.hit && options_.box && !options_.box->contains(found)) {
-      payload = kOutsideBox;
-      box_reached_.store(true, std::memory_order_relaxed);
-    } else if (x.hit) {
+    if (x.hit) {
       payload = static_cast<std::uint32_t>(worker.data.size());
       worker.data.insert(worker.data.end(), found, found + d_ + 1);
       if (x.domain < 0) output(found);
@@ -441,7 +425,6 @@ Found Tracer::classify_in_level(const Simplex& tau, std::uint32_t chunk, Worker&
   }
   const std::uint32_t p = worker.payload[id];
   if (p == kMiss) return {Kind::miss, 0};
-  if (p == kOutsideBox) return {Kind::clipped, 0};
   if (worker.data[p + d_] >= 0) return {Kind::outside, p};
   if (chunk < worker.output_in[id]) output(worker.data.data() + p);
   return {Kind::inside, p};
@@ -607,8 +590,6 @@ TraceResult run_tracer(const Triangulation& triangulation, std::vector<Intersect
     if (o->ambient_dimension() != d)
       throw InputError("the oracle works in R^" + std::to_string(o->ambient_dimension()) +
                        " but the triangulation is of R^" + std::to_string(d));
-  if (options.box && (static_cast<int>(options.box->lo.size()) != d || static_cast<int>(options.box->hi.size()) != d))
-    throw InputError("the box must have " + std::to_string(d) + " coordinates per corner");
   if (seeds.empty()) throw SeedError("no seed given");
   Tracer tracer(triangulation, std::move(oracles), options);
   for (const auto& seed : seeds) {
@@ -619,8 +600,6 @@ TraceResult run_tracer(const Triangulation& triangulation, std::vector<Intersect
   if (result.status == TraceStatus::max_simplices_reached)
     result.message = "stopped at the limit of " + std::to_string(options.max_simplices) +
                      " simplices; the manifold may be unbounded (give a domain or a box) or the scale too fine";
-  else if (result.status == TraceStatus::box_reached)
-    result.message = "the manifold leaves the bounding box; the output is cut there";
   return result;
 }
 

@@ -14,14 +14,8 @@
 
 namespace coxmesh {
 
-struct Box {
-  std::vector<double> lo, hi;  ///< d coordinates each, lo < hi
-  bool contains(const double* x) const;
-};
-
 struct TraceOptions {
   std::size_t max_simplices = 20'000'000;  ///< stop (keeping the result) when |S| reaches this
-  std::optional<Box> box;                  ///< stop expanding at intersection points outside
   int seed_search_rings = 3;               ///< rings of d-simplices searched around a seed
   bool skip_unusable_seeds = false;        ///< ignore seeds that reach nothing (automatic seeding)
   /// Worker threads for the OracleFactory overload (0 = all hardware threads). The result, order
@@ -31,7 +25,9 @@ struct TraceOptions {
   std::function<void(std::size_t traced)> progress;
 };
 
-enum class TraceStatus { complete, max_simplices_reached, box_reached };
+/// A walk stopped by the simplex limit leaves cells open at its front: its cell complex is not
+/// closed, so its topology is not reported. (A box bounds the walk as a domain: box_domain().)
+enum class TraceStatus { complete, max_simplices_reached };
 
 /// The output of tracing (spec §2.1): S = the k-simplices meeting M̂ inside the domain, each with
 /// its intersection point, and S_∂ = the (k+1)-simplices meeting M̂ ∩ ∂D̂, with theirs. Ids are
