@@ -34,7 +34,7 @@ void list(const FacesOptions& o, bool faces) {
       else std::cout << to_string(f) << "\n";
     }
   }
-  if (o.json) std::cout << out.dump() << "\n";
+  if (o.json) std::cout << out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
 }
 
 void add(CLI::App& app, int& status, bool faces) {

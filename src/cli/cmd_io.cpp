@@ -56,7 +56,7 @@ void check(const CheckOptions& o) {
     j["function_evaluations"] = file.info.function_evaluations;
     j["timings"] = {{"read_seconds", read_s}, {"topology_seconds", topo_s}};
     j["peak_memory_bytes"] = peak_memory_bytes();
-    std::cout << j.dump(2) << "\n";
+    std::cout << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   } else {
     std::cout << o.input << ": " << cc.manifold_dimension << "-manifold in R^" << cc.ambient_dimension;
     if (!file.info.source.empty()) std::cout << " (" << file.info.source << ")";

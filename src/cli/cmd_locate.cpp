@@ -18,7 +18,7 @@ struct LocateOptions {
 
 void print_result(const Simplex& s, const Triangulation& t, bool json) {
   if (json) {
-    std::cout << simplex_json(s, t).dump() << "\n";
+    std::cout << simplex_json(s, t).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
     return;
   }
   std::vector<double> xs((s.k + 1) * s.d);

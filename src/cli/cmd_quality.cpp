@@ -220,7 +220,7 @@ void print_json(const std::vector<Row>& rows) {
     j["delaunay_direct"] = r.delaunay_direct;
     out.push_back(std::move(j));
   }
-  std::cout << out.dump(1) << "\n";
+  std::cout << out.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
 }
 
 // ---- SVG plot --------------------------------------------------------------------------------------

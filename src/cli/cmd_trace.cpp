@@ -2,6 +2,7 @@
 // spec §2), report its topology and write it to a file.
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -39,6 +40,7 @@ struct TraceCliOptions {
   std::string domain_center, cut;
   std::string output, format, project;
   std::vector<const CLI::Option*> preset_only;  // options that make no sense with --function
+  const CLI::Option *function_given = nullptr, *dim_given = nullptr, *domain_center_given = nullptr;
 };
 
 using Clock = std::chrono::steady_clock;
@@ -103,10 +105,21 @@ void run(TraceCliOptions o) {
   // (muparser) are not thread-safe, so each worker gets its own.
   double default_edge = 0, extent = 2.0;
   std::string name;
-  const bool from_text = !o.function.empty();
-  if (from_text)
+  const bool from_text = o.function_given->count() > 0;
+  if (from_text) {
     for (const CLI::Option* opt : o.preset_only)
       if (opt->count()) throw InputError(opt->get_name() + " is a preset parameter; it does not apply to --function");
+  } else {  // an option the preset does not read must not pass silently
+    std::vector<const CLI::Option*> given = o.preset_only;
+    given.push_back(o.dim_given);
+    for (const CLI::Option* opt : given) {
+      if (!opt->count()) continue;
+      for (const PresetInfo& info : preset_catalogue())
+        if (info.name == o.preset && std::find(info.parameters.begin(), info.parameters.end(), opt->get_name()) == info.parameters.end())
+          throw InputError(opt->get_name() + " does not apply to the preset " + o.preset + " (" + info.summary + ")");
+    }
+  }
+  if (o.domain_center_given->count() && !o.domain_ball) throw InputError("--domain-center needs --domain-ball");
   if (!from_text && !o.center.empty()) o.params.center = parse_point(o.center, "--center");
   std::function<std::pair<FunctionPtr, FunctionPtr>()> make_problem = [&o, from_text]() -> std::pair<FunctionPtr, FunctionPtr> {
     FunctionPtr f, domain;
@@ -153,6 +166,7 @@ void run(TraceCliOptions o) {
   const bool write = !output.empty();
   const MeshFormat format = !write ? MeshFormat::vtu : o.format.empty() ? format_of_path(output) : parse_format(o.format);
   if (write) {
+    if (output == "-" && format == MeshFormat::cxm) throw InputError("-o -: the native format is binary; give a file name");
     check_writable(output);
     if (format != MeshFormat::cxm) make_projection(o.project, d, {});  // the spec fits d (pca and files: checked again on the points)
   }
@@ -270,6 +284,8 @@ void run(TraceCliOptions o) {
   }
   if (progress) progress->clear();
 
+  // With -o - the mesh goes to standard output and the summary to standard error.
+  std::ostream& out = output == "-" ? std::cerr : std::cout;
   if (o.json) {
     nlohmann::json j = topology_json(cc, topo);
     if (from_text) j["function"] = o.function;
@@ -287,24 +303,24 @@ void run(TraceCliOptions o) {
                      {"cells", written.cells}, {"skipped_cells", written.skipped}};
     }
     j["peak_memory_bytes"] = peak_memory_bytes();
-    std::cout << j.dump(2) << "\n";
+    out << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   } else if (!o.quiet) {
-    std::cout << name << ": " << cc.manifold_dimension << "-manifold in R^" << d << "\n";
-    print_topology(std::cout, cc, topo);
-    if (automatic) std::cout << "  seeds              " << automatic << " found automatically in the box\n";
-    std::cout << "  F evaluations      " << evaluations << " (" << oracle_calls << " oracle calls)\n"
+    out << name << ": " << cc.manifold_dimension << "-manifold in R^" << d << "\n";
+    print_topology(out, cc, topo);
+    if (automatic) out << "  seeds              " << automatic << " found automatically in the box\n";
+    out << "  F evaluations      " << evaluations << " (" << oracle_calls << " oracle calls)\n"
               << "  time               trace " << trace_s << " s ("
               << static_cast<long long>(cc.interior[0].size() / std::max(trace_s, 1e-9)) << " simplices/s), cell complex "
               << complex_s << " s, topology " << topo_s << " s";
-    if (write) std::cout << ", write " << write_s << " s";
-    std::cout << "\n  peak memory        " << peak_memory_bytes() / (1 << 20) << " MiB\n";
+    if (write) out << ", write " << write_s << " s";
+    out << "\n  peak memory        " << peak_memory_bytes() / (1 << 20) << " MiB\n";
     if (write) {
-      std::cout << "  output             " << output << " (" << format_name(format) << ", " << written.points << " points, "
+      out << "  output             " << output << " (" << format_name(format) << ", " << written.points << " points, "
                 << written.cells << " cells";
-      if (written.skipped) std::cout << "; " << written.skipped << " open cells at the cut not written";
-      std::cout << ")\n";
+      if (written.skipped) out << "; " << written.skipped << " open cells at the cut not written";
+      out << ")\n";
     }
-    if (!message.empty()) std::cout << "  note: " << message << "\n";
+    if (!message.empty()) out << "  note: " << message << "\n";
   }
 }
 
@@ -315,12 +331,12 @@ void register_trace(CLI::App& app, int& status) {
   CLI::App* cmd = app.add_subcommand("trace", "mesh a manifold: trace it through the ambient triangulation, report its "
                                               "topology and write it (default: the torus, to torus.vtu)");
   auto* preset = cmd->add_option("--preset", o->preset, "built-in manifold (see `coxmesh presets`)")->capture_default_str();
-  cmd->add_option("--function", o->function,
+  o->function_given = cmd->add_option("--function", o->function,
                   "the manifold as equations \"e1; e2; ...\" = 0 in x1..xd (x,y,z,w when d <= 4), e.g. "
                   "\"x^2+y^2+z^2-1\"")
       ->excludes(preset);
   o->preset_only.push_back(cmd->add_option("--m", o->params.m, "intrinsic dimension (sphere, plane)"));
-  cmd->add_option("--dim", o->params.dim, "ambient dimension d (sphere, moment-curve, plane; --function when the "
+  o->dim_given = cmd->add_option("--dim", o->params.dim, "ambient dimension d (sphere, moment-curve, plane; --function when the "
                                           "variables do not show it)");
   o->preset_only.push_back(cmd->add_option("--radius", o->params.radius, "radius parameter of the preset"));
   o->preset_only.push_back(cmd->add_option("--minor-radius", o->params.minor_radius, "second radius (torus, flat-torus)"));
@@ -329,12 +345,14 @@ void register_trace(CLI::App& app, int& status) {
   cmd->add_option("--seed", o->seeds, "a point near the manifold (projected onto it); repeat for more")->take_all();
   cmd->add_flag("--auto-seed", o->auto_seed,
                 "also find seeds for every component inside the box (always on for --function without --seed)");
-  cmd->add_option("--max-simplices", o->max_simplices, "stop when this many simplices are traced")->capture_default_str();
+  cmd->add_option("--max-simplices", o->max_simplices, "stop when this many simplices are traced")
+      ->capture_default_str()
+      ->check(unsigned_integer());
   cmd->add_option("--box", o->box,
                   "lo1,...,lod,hi1,...,hid: stop at this box and search seeds in it (--function: default [-2,2]^d)");
   cmd->add_option("--domain", o->domains, "keep the part where this expression is < 0; repeat to intersect")->take_all();
   cmd->add_option("--domain-ball", o->domain_ball, "keep the part inside the ball of this radius");
-  cmd->add_option("--domain-center", o->domain_center, "centre of --domain-ball (default: origin)");
+  o->domain_center_given = cmd->add_option("--domain-center", o->domain_center, "centre of --domain-ball (default: origin)");
   cmd->add_option("--cut", o->cut, "n1,...,nd,c: keep the part where <n,x> < c");
   cmd->add_option("-o,--output", o->output,
                   "write the mesh to FILE (.vtu .off .ply .obj .mesh .cxm); default NAME.vtu (not with --json)");

@@ -17,7 +17,8 @@ void TriangulationOptions::add_to(CLI::App& app) {
   auto* h = app.add_option("--edge-length", edge_length, "scale so that the longest edge of every d-simplex is H");
   s->excludes(h);
   app.add_option("--offset", offset, "translation b1,...,bd of the triangulation");
-  app.add_option("--rotate", rotation_seed, "apply a random rotation drawn from this seed (deterministic)");
+  app.add_option("--rotate", rotation_seed, "apply a random rotation drawn from this seed (deterministic)")
+      ->check(unsigned_integer());
 }
 
 Triangulation TriangulationOptions::build(int d) const {
@@ -46,22 +47,53 @@ Triangulation TriangulationOptions::build(int d) const {
 }
 
 std::vector<double> parse_point(const std::string& text, const std::string& what) {
+  // Fields are separated by one comma or by whitespace; an empty field ("1,,2", "1,") is an error.
   std::vector<double> out;
   std::size_t i = 0;
-  while (i < text.size()) {
-    while (i < text.size() && (text[i] == ',' || std::isspace(static_cast<unsigned char>(text[i])))) ++i;
+  const auto space = [&text](std::size_t at) { return std::isspace(static_cast<unsigned char>(text[at])) != 0; };
+  while (true) {
+    while (i < text.size() && space(i)) ++i;
     if (i >= text.size()) break;
     std::size_t j = i;
-    while (j < text.size() && text[j] != ',' && !std::isspace(static_cast<unsigned char>(text[j]))) ++j;
+    while (j < text.size() && text[j] != ',' && !space(j)) ++j;
+    if (j == i) throw InputError(what + ": an empty field in '" + printable(text) + "'");
     const std::string tok = text.substr(i, j - i);
     const std::optional<double> v = parse_double(tok);
-    if (!v) throw InputError(what + ": '" + tok + "' is not a number");
+    if (!v) throw InputError(what + ": '" + printable(tok) + "' is not a number");
     if (!std::isfinite(*v)) throw InputError(what + ": NaN or infinite coordinate '" + tok + "'");
     out.push_back(*v);
+    while (j < text.size() && space(j)) ++j;
+    if (j < text.size() && text[j] == ',') {
+      ++j;
+      std::size_t k = j;
+      while (k < text.size() && space(k)) ++k;
+      if (k >= text.size() || text[k] == ',') throw InputError(what + ": an empty field in '" + printable(text) + "'");
+    }
     i = j;
   }
-  if (out.empty()) throw InputError(what + ": no coordinates in '" + text + "'");
+  if (out.empty()) throw InputError(what + ": no coordinates in '" + printable(text) + "'");
   return out;
+}
+
+std::string printable(const std::string& text, std::size_t max_length) {
+  std::string out;
+  for (unsigned char c : text) {
+    if (out.size() >= max_length) return out + "...";
+    if (c == '\n') out += "\\n";
+    else if (c == '\t') out += "\\t";
+    else if (c < 0x20 || c == 0x7f) out += '?';
+    else out += static_cast<char>(c);
+  }
+  return out;
+}
+
+const CLI::Validator& unsigned_integer() {
+  static const CLI::Validator v(
+      [](std::string& text) {
+        return parse_unsigned(text) ? std::string() : "'" + printable(text) + "' is not a non-negative integer below 2^64";
+      },
+      "UINT");
+  return v;
 }
 
 nlohmann::json simplex_json(const Simplex& s) {
@@ -87,11 +119,15 @@ int run_guarded(const std::function<void()>& body) {
     body();
     return 0;
   } catch (const InputError& e) {
-    std::cerr << "coxmesh: error: " << e.what() << "\n";
+    std::cerr << "coxmesh: error: " << printable(e.what(), 400) << "\n";
   } catch (const std::ios_base::failure& e) {
-    std::cerr << "coxmesh: error: " << e.what() << "\n";
+    std::cerr << "coxmesh: error: " << printable(e.what()) << "\n";
   } catch (const std::runtime_error& e) {
-    std::cerr << "coxmesh: error: " << e.what() << "\n";
+    std::cerr << "coxmesh: error: " << printable(e.what()) << "\n";
+  } catch (const std::bad_alloc&) {
+    std::cerr << "coxmesh: error: out of memory (give a larger --edge-length or a smaller --max-simplices)\n";
+  } catch (const std::exception& e) {
+    std::cerr << "coxmesh: error: " << printable(e.what()) << "\n";
   }
   return 1;
 }

@@ -27,6 +27,13 @@ struct TriangulationOptions {
 /// Parses "x1,...,xn" (whitespace or commas), every token fully consumed, finite; throws InputError.
 std::vector<double> parse_point(const std::string& text, const std::string& what);
 
+/// `text` fit for one line of a message: control characters shown as '?' (newlines as \\n), cut
+/// at max_length bytes. Bytes that are not UTF-8 are for the JSON writer to replace (error_handler).
+std::string printable(const std::string& text, std::size_t max_length = 200);
+
+/// CLI11 check of an unsigned option: all digits, below 2^64 (CLI11 itself wraps "-5" around).
+const CLI::Validator& unsigned_integer();
+
 nlohmann::json simplex_json(const Simplex& s);
 nlohmann::json simplex_json(const Simplex& s, const Triangulation& t);  // with "cartesian"
 

@@ -1,7 +1,10 @@
 // coxmesh: the command-line tool. Each subcommand lives in its own cmd_*.cpp file.
 #include <CLI/CLI.hpp>
 
+#include <iostream>
+
 #include "commands.h"
+#include "common.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"coxmesh: mesh submanifolds of any dimension with Coxeter triangulations"};
@@ -16,7 +19,13 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    // A usage error: one line, exit status 2 (docs/cli.md).
+    std::cerr << "coxmesh: error: " << coxmesh::cli::printable(e.what()) << " (see coxmesh --help)\n";
+    return 2;
+  } catch (const std::exception& e) {  // (subcommands catch their own; this is the last resort)
+    std::cerr << "coxmesh: error: " << coxmesh::cli::printable(e.what()) << "\n";
+    return 1;
   }
   return status;
 }

@@ -25,6 +25,7 @@ struct Preset {
 
 struct PresetInfo {
   std::string name, summary;
+  std::vector<std::string> parameters;  ///< the options it reads (any other preset option is refused)
 };
 
 /// The catalogue, one line each (for `coxmesh presets` and --help).

@@ -61,12 +61,57 @@ class FdBuffer final : public std::streambuf {
   int error_ = 0;
 };
 
+// Writes straight to an open descriptor: standard output, or a file that cannot be replaced (a FIFO,
+// a device such as /dev/null).
+void write_to_descriptor(const std::string& path, int fd, const std::function<void(std::ostream&)>& write) {
+  FdBuffer buffer(fd);
+  std::ostream os(&buffer);
+  write(os);
+  os.flush();
+  if (!os) fail(path, buffer.error() ? buffer.error() : EIO);
+}
+
+// The file a path names once every symbolic link is followed (it need not exist: a dangling link
+// names the file to create). Replacing the link itself would cut it from its target.
+std::filesystem::path follow_links(const std::string& path) {
+  namespace fs = std::filesystem;
+  fs::path p(path);
+  std::error_code ec;
+  for (int hops = 0; fs::is_symlink(fs::symlink_status(p, ec)); ++hops) {
+    if (hops == 40) fail(path, ELOOP);
+    const fs::path link = fs::read_symlink(p, ec);
+    if (ec) fail(path, ec.value());
+    p = link.is_absolute() ? link : p.parent_path() / link;
+  }
+  return p;
+}
+
+bool is_special_file(const std::filesystem::path& p) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(p, ec);
+  return !ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status) &&
+         !std::filesystem::is_directory(status);
+}
+
 }  // namespace
 
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
   namespace fs = std::filesystem;
-  const fs::path target(path);
+  if (path == "-") return write_to_descriptor(path, STDOUT_FILENO, write);
+  const fs::path target = follow_links(path);
   if (target.filename().empty()) throw InputError("cannot write " + path + ": not a file name");
+  if (is_special_file(target)) {
+    const int fd = ::open(target.c_str(), O_WRONLY | O_CLOEXEC);
+    if (fd < 0) fail(path, errno);
+    try {
+      write_to_descriptor(path, fd, write);
+    } catch (...) {
+      ::close(fd);
+      throw;
+    }
+    if (::close(fd) != 0) fail(path, errno);
+    return;
+  }
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
 
   // Create the temporary file next to the target (same file system, so rename is atomic).
@@ -96,7 +141,7 @@ void write_file_atomically(const std::string& path, const std::function<void(std
     const int closed = ::close(fd);
     fd = -1;
     if (closed != 0) fail(path, errno);
-    if (::rename(temp.c_str(), path.c_str()) != 0) fail(path, errno);
+    if (::rename(temp.c_str(), target.c_str()) != 0) fail(path, errno);
   } catch (...) {
     discard();
     throw;
@@ -110,8 +155,13 @@ void write_file_atomically(const std::string& path, const std::function<void(std
 
 void check_writable(const std::string& path) {
   namespace fs = std::filesystem;
-  const fs::path target(path);
+  if (path == "-") return;
+  const fs::path target = follow_links(path);
   if (target.filename().empty()) throw InputError("cannot write " + path + ": not a file name");
+  if (is_special_file(target)) {
+    if (::access(target.c_str(), W_OK) != 0) fail(path, errno);
+    return;
+  }
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
   std::error_code ec;
   if (fs::is_directory(target, ec)) fail(path, EISDIR);

@@ -13,7 +13,9 @@ namespace coxmesh {
 /// `<dir>/.<name>.tmp-<random>`, which is fsynced and renamed over `path` (then the directory is
 /// fsynced). On any error — the directory is missing or unwritable, `write` throws, the stream
 /// fails (disk full) — the temporary file is removed and the previous `path`, if any, is untouched.
-/// The new file gets the mode 0666 minus the umask, like a plain open().
+/// The new file gets the mode 0666 minus the umask, like a plain open(). A symbolic link is
+/// followed: its target is replaced atomically and the link stays. A file that cannot be replaced
+/// (a FIFO, a device such as /dev/null) is written directly, and "-" means standard output.
 ///   Throws InputError naming the path for I/O failures; rethrows what `write` throws.
 ///
 ///   write_file_atomically("out.off", [&](std::ostream& os) { os << "OFF\n0 0 0\n"; });

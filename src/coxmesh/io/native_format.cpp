@@ -81,7 +81,7 @@ void write_native(std::ostream& os, const CellComplex& cc, const NativeInfo& inf
                {"matrix", info.matrix},
                {"offset", info.offset},
                {"function_evaluations", info.function_evaluations}};
-  std::string line = h.dump();
+  std::string line = h.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
   line.append((8 - (line.size() + 1) % 8) % 8, ' ');
   line += '\n';
   os.write(line.data(), static_cast<std::streamsize>(line.size()));

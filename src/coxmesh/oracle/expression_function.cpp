@@ -37,7 +37,14 @@ std::string where(std::string_view text, std::size_t p) {
          std::string(text.substr(0, p)) + " >>> " + std::string(text.substr(p)) + ")";
 }
 
+constexpr std::size_t kMaxExpressionLength = 1 << 16;
+
 std::vector<Equation> split_equations(std::string_view text) {
+  if (text.size() > kMaxExpressionLength)
+    throw InputError("the expression is too long (" + std::to_string(text.size()) + " characters; at most " +
+                     std::to_string(kMaxExpressionLength) + ")");
+  if (text.find_first_not_of(" \t\r\n") == std::string_view::npos)
+    throw InputError("the expression is empty: write the equations e1; e2; ... = 0 in x1..xd");
   std::vector<Equation> out;
   std::size_t begin = 0;
   while (true) {
