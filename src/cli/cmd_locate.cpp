@@ -1,4 +1,5 @@
 // coxmesh locate: the minimal simplex containing a point (spec §1.7).
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 
@@ -45,6 +46,8 @@ void run(const LocateOptions& o) {
   const Triangulation t = o.tri.build(*o.dim);
   std::ifstream file;
   if (o.points_file != "-") {
+    std::error_code ec;
+    if (std::filesystem::is_directory(o.points_file, ec)) throw InputError("the points file '" + o.points_file + "' is a directory");
     file.open(o.points_file);
     if (!file) throw InputError("cannot open the points file '" + o.points_file + "'");
   }

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <random>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -16,6 +18,7 @@
 #include "coxmesh/io/write_mesh.h"
 #include "coxmesh/oracle/expression_function.h"
 #include "coxmesh/oracle/implicit_oracle.h"
+#include "coxmesh/oracle/regularity.h"
 #include "coxmesh/tracing/seeds.h"
 #include "coxmesh/util/parallel_for.h"
 #include "presets.h"
@@ -216,6 +219,28 @@ void run(TraceCliOptions o) {
     auto found = find_seeds(*f, domain.get(), search_box);
     automatic = found.size();
     if (seeds.empty() && found.empty()) {
+      // Not finite where sampled (0/0, 1/0, log of a negative): say that, not "no point found".
+      std::mt19937_64 random(1);
+      std::vector<double> x(d), value(f->codimension());
+      int finite = 0;
+      std::string example;
+      for (int sample = 0; sample < 64; ++sample) {
+        for (int i = 0; i < d; ++i)
+          x[i] = search_box.lo[i] + std::uniform_real_distribution<double>(0, 1)(random) * (search_box.hi[i] - search_box.lo[i]);
+        f->evaluate(x.data(), value.data());
+        const bool ok = std::all_of(value.begin(), value.end(), [](double v) { return std::isfinite(v); });
+        finite += ok;
+        if (!ok && example.empty()) {
+          std::ostringstream at;
+          at << "(";
+          for (int i = 0; i < d; ++i) at << (i ? "," : "") << x[i];
+          at << ")";
+          example = at.str();
+        }
+      }
+      if (finite == 0)
+        throw InputError("F is not finite at any of 64 points sampled in the box (e.g. at " + example +
+                         "): check the expression for divisions by zero and logarithms or roots of negative numbers");
       std::ostringstream box_text;
       for (int i = 0; i < d; ++i) box_text << (i ? " x [" : "[") << search_box.lo[i] << "," << search_box.hi[i] << "]";
       throw InputError("no point of the manifold found in the box " + box_text.str() +
@@ -245,9 +270,17 @@ void run(TraceCliOptions o) {
     auto [fw, dw] = make_problem();
     return std::make_unique<ImplicitOracle>(t, fw, dw, shared);
   }, seeds, options);
-  if (traced.simplices.size() == 0)
+  const double h = t.longest_edge();
+  const ImplicitFunction* f_only[] = {f.get()};
+  if (traced.simplices.size() == 0) {
+    std::vector<double> seed_points;
+    for (const auto& x : seeds) seed_points.insert(seed_points.end(), x.begin(), x.end());
+    if (singular_on(f_only, seed_points, h, 48, 0.02))
+      throw InputError("F's differential is singular at the seeds: F vanishes identically near them or its equations are "
+                       "dependent, so 0 is not a regular value of F and there is no manifold to trace");
     throw InputError("no simplex near the " + std::to_string(seeds.size()) +
                      " seeds meets the manifold: the triangulation is too coarse for it (give a smaller --edge-length)");
+  }
   const double trace_s = seconds_since(t0);
   const auto status = traced.status;
   const std::string message = traced.message;
@@ -261,6 +294,20 @@ void run(TraceCliOptions o) {
   const auto t2 = Clock::now();
   const TopologyReport topo = analyze_topology(cc);
   const double topo_s = seconds_since(t2);
+  // The exact rule meshes a perturbed level set where F = 0 is not a regular level: say so.
+  std::vector<std::string> warnings;
+  if (singular_on(f_only, {cc.vertices.data(), cc.vertices.size()}, h))
+    warnings.push_back("F's differential is (nearly) singular on the traced set: 0 is not a regular value of F (F is a "
+                       "square, F >= 0, or its equations are dependent there); what was meshed is a perturbed level set "
+                       "near F = 0");
+  if (domain) {
+    const ImplicitFunction* f_and_domain[] = {f.get(), domain.get()};
+    if (singular_on(f_and_domain, {cc.boundary_vertices.data(), cc.boundary_vertices.size()}, h))
+      warnings.push_back("the domain's boundary is tangent to the manifold along the cut (D = 0 contains M or touches "
+                         "it): the cut meshed is a perturbed one");
+  }
+  if (!o.json)
+    for (const std::string& w : warnings) std::cerr << "coxmesh: warning: " << w << "\n";
 
   WrittenCounts written;
   double write_s = 0;
@@ -296,6 +343,7 @@ void run(TraceCliOptions o) {
     j["automatic_seeds"] = automatic;
     j["complete"] = status == TraceStatus::complete;
     if (!message.empty()) j["message"] = message;
+    if (!warnings.empty()) j["warnings"] = warnings;
     j["timings"] = {{"trace_seconds", trace_s}, {"cell_complex_seconds", complex_s}, {"topology_seconds", topo_s}};
     if (write) {
       j["timings"]["write_seconds"] = write_s;

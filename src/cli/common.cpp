@@ -1,4 +1,5 @@
 #include "common.h"
+#include "coxmesh/io/number_rows.h"
 #include "coxmesh/util/parse_number.h"
 
 #include <cmath>

@@ -16,6 +16,18 @@ int main(int argc, char** argv) {
   coxmesh::cli::register_trace(app, status);
   coxmesh::cli::register_quality(app, status);
   coxmesh::cli::register_io(app, status);
+  if (argc > 1 && argv[1][0] != '-') {  // CLI11 would only say that a subcommand is required
+    std::string known;
+    bool found = false;
+    for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+      found |= sub->get_name() == argv[1];
+      known += (known.empty() ? "" : ", ") + sub->get_name();
+    }
+    if (!found) {
+      std::cerr << "coxmesh: error: unknown subcommand '" << coxmesh::cli::printable(argv[1]) << "' (known: " << known << ")\n";
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

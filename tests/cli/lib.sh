@@ -19,3 +19,11 @@ finish() {
   echo "$passes passed, $fails failed"
   [[ $fails -eq 0 ]]
 }
+exits_with() {  # exits_with NAME STATUS PATTERN CMD...: exit status STATUS and one error line matching PATTERN
+  local name=$1 want=$2 pattern=$3; shift 3
+  local err status=0
+  err=$("$@" 2>&1 >/dev/null) || status=$?
+  if [[ $status -eq $want && "$err" == "coxmesh: error: "*"$pattern"* && $(printf '%s\n' "$err" | wc -l) -eq 1 ]]; then
+    echo "ok   $name"; passes=$((passes + 1))
+  else echo "FAIL $name: status $status (expected $want), stderr [$err]"; fails=$((fails + 1)); fi
+}

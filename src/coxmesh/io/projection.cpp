@@ -1,12 +1,12 @@
 // Projection of R^d points to R³ for the 3D formats; see projection.h.
 #include "coxmesh/io/projection.h"
-#include "coxmesh/util/parse_number.h"
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <fstream>
 #include <sstream>
 
+#include "coxmesh/io/number_rows.h"
 #include "coxmesh/lattice/simplex.h"
 
 namespace coxmesh {
@@ -14,33 +14,11 @@ namespace coxmesh {
 namespace {
 
 std::vector<double> read_projection_file(const std::string& path, int d) {
-  std::ifstream in(path);
-  if (!in) throw InputError("--project " + path + ": cannot open the file (give i,j,k, pca or a matrix file)");
-  std::vector<double> m;
-  std::string line;
-  int rows = 0;
-  while (std::getline(in, line)) {
-    line = line.substr(0, line.find('#'));
-    std::istringstream ls(line);
-    std::string token;
-    int cols = 0;
-    while (ls >> token) {
-      const std::optional<double> v = parse_double(token);
-      if (!v || !std::isfinite(*v))
-        throw InputError("--project " + path + ": '" + token + "' is not a finite number");
-      m.push_back(*v);
-      ++cols;
-    }
-    if (cols == 0) continue;
-    ++rows;
-    if (cols != d)
-      throw InputError("--project " + path + ": row " + std::to_string(rows) + " has " + std::to_string(cols) +
-                       " numbers, expected d = " + std::to_string(d));
-  }
-  if (rows != 3)
-    throw InputError("--project " + path + ": expected 3 rows of d = " + std::to_string(d) + " numbers, found " +
-                     std::to_string(rows) + " rows");
-  return m;
+  const NumberRows rows = read_number_rows(path, "--project file '" + path + "'");
+  if (rows.rows != 3 || rows.columns != static_cast<std::size_t>(d))
+    throw InputError("--project " + path + ": expected d = " + std::to_string(d) + " numbers in each of 3 rows, found " +
+                     std::to_string(rows.rows) + " rows of " + std::to_string(rows.columns));
+  return rows.values;
 }
 
 bool is_index_list(const std::string& s) {

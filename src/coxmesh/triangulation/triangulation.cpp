@@ -1,6 +1,5 @@
 // Thesis §3.1–3.3; spec §1.3 (vertex coordinates), §1.7 (point location), §1.8 (Ã_d).
 #include "coxmesh/triangulation/triangulation.h"
-#include "coxmesh/util/parse_number.h"
 
 #include <Eigen/LU>
 #include <Eigen/QR>
@@ -8,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <numbers>
 #include <random>
 #include <sstream>
@@ -446,43 +444,6 @@ double Triangulation::longest_edge() const {
     best = std::max(best, v.squaredNorm());
   }
   return std::sqrt(best);
-}
-
-Eigen::MatrixXd read_matrix_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError("cannot open the matrix file '" + path + "'");
-  std::vector<std::vector<double>> rows;
-  std::string line;
-  int lineno = 0;
-  while (std::getline(in, line)) {
-    ++lineno;
-    if (auto c = line.find('#'); c != std::string::npos) line.resize(c);
-    std::istringstream ls(line);
-    std::vector<double> row;
-    std::string tok;
-    while (ls >> tok) {
-      const std::optional<double> v = parse_double(tok);
-      if (!v)
-        throw InputError("matrix file '" + path + "', line " + std::to_string(lineno) + ": '" + tok + "' is not a number");
-      if (!std::isfinite(*v))
-        throw InputError("matrix file '" + path + "', line " + std::to_string(lineno) + ": NaN or infinite entry");
-      row.push_back(*v);
-    }
-    if (row.empty()) continue;
-    if (!rows.empty() && row.size() != rows.front().size())
-      throw InputError("matrix file '" + path + "', line " + std::to_string(lineno) + ": expected " +
-                       std::to_string(rows.front().size()) + " numbers, got " + std::to_string(row.size()));
-    rows.push_back(std::move(row));
-  }
-  if (rows.empty()) throw InputError("matrix file '" + path + "' has no rows");
-  if (rows.size() != rows.front().size())
-    throw InputError("matrix file '" + path + "' is " + std::to_string(rows.size()) + "x" +
-                     std::to_string(rows.front().size()) + ", expected a square matrix");
-  const int d = static_cast<int>(rows.size());
-  Eigen::MatrixXd m(d, d);
-  for (int i = 0; i < d; ++i)
-    for (int j = 0; j < d; ++j) m(i, j) = rows[i][j];
-  return m;
 }
 
 }  // namespace coxmesh

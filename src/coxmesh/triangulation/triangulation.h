@@ -82,8 +82,4 @@ class Triangulation {
   double known_longest_edge_ = 0;  // > 0 when the closed form applies
 };
 
-/// Parses a matrix file: d rows of d whitespace-separated numbers ('#' starts a comment).
-/// Throws InputError on ragged rows, a non-square matrix, non-numbers or NaN/Inf.
-Eigen::MatrixXd read_matrix_file(const std::string& path);
-
 }  // namespace coxmesh
