@@ -26,15 +26,16 @@ void list(const FacesOptions& o, bool faces) {
                        std::to_string(hi) + " for this simplex");
     lo = hi = *o.dim;
   }
-  nlohmann::json out = nlohmann::json::array();
+  // Streamed, JSON too: the cofaces of a simplex number up to (d+1)!, millions for d = 9.
+  const char* separator = "[";
   for (int k = lo; k <= hi; ++k) {
     Enumerator e(s, k);
     for (Simplex f; e.next(f);) {
-      if (o.json) out.push_back(simplex_json(f));
+      if (o.json) std::cout << separator << simplex_json(f).dump(), separator = ",";
       else std::cout << to_string(f) << "\n";
     }
   }
-  if (o.json) std::cout << out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
+  if (o.json) std::cout << (*separator == '[' ? "[]" : "]") << "\n";
 }
 
 void add(CLI::App& app, int& status, bool faces) {

@@ -250,6 +250,8 @@ void run(TraceCliOptions o) {
     seeds.insert(seeds.end(), found.begin(), found.end());
   }
 
+  for (auto& seed : seeds) seed = generic_seed(*f, t, std::move(seed));
+
   std::optional<ProgressDisplay> progress;
   if (!o.json && !o.quiet) {
     progress.emplace();

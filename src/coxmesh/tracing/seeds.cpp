@@ -62,4 +62,19 @@ std::vector<std::vector<double>> find_seeds(const ImplicitFunction& f, const Imp
   return seeds;
 }
 
+std::vector<double> generic_seed(const ImplicitFunction& f, const Triangulation& t, std::vector<double> x) {
+  const int d = t.dimension();
+  if (t.locate(x).k == d) return x;
+  const double h = t.longest_edge();
+  std::vector<double> moved = x;
+  double norm = 0;
+  for (int i = 0; i < d; ++i) norm += std::pow(std::sin(1.6180339887 * (i + 1) + 0.5), 2);
+  for (int i = 0; i < d; ++i) moved[i] += 0.25 * h * std::sin(1.6180339887 * (i + 1) + 0.5) / std::sqrt(norm);
+  const std::optional<std::vector<double>> p = project_onto_manifold(f, moved);
+  if (!p) return x;
+  double distance = 0;
+  for (int i = 0; i < d; ++i) distance += ((*p)[i] - x[i]) * ((*p)[i] - x[i]);
+  return std::sqrt(distance) <= h && t.locate(*p).k == d ? *p : x;
+}
+
 }  // namespace coxmesh

@@ -15,6 +15,13 @@ namespace coxmesh {
 std::optional<std::vector<double>> project_onto_manifold(const ImplicitFunction& f, std::vector<double> x,
                                                          double tolerance = 1e-12);
 
+/// A seed moved off the faces of dimension < d of the triangulation: a point of M on a lattice vertex
+/// (the origin of many presets) lies in (d+1)! d-simplices, and there the exact rule's degenerate
+/// cases are the slowest. Returns x when it lies inside a d-simplex; otherwise x moved by about h/4
+/// in a fixed generic direction and projected back onto M (x itself if that fails or moves farther
+/// than h).
+std::vector<double> generic_seed(const ImplicitFunction& f, const Triangulation& t, std::vector<double> x);
+
 /// Seeds for every component of M inside `box` (and the domain, if given): `samples` points
 /// drawn from a fixed-seed generator are projected onto M; those that converge inside the box
 /// and the domain are kept (in draw order, deterministic).

@@ -542,11 +542,13 @@ void Tracer::add_seed(std::span<const double> seed, bool must_succeed) {
     throw InputError("the seed " + point_text(seed) + " has " + std::to_string(seed.size()) +
                      " coordinates, expected " + std::to_string(d_));
   const Simplex sigma = t_.locate(seed);
-  // Ring 0: the d-simplices containing the seed; ring r+1: their neighbours across facets.
+  // Ring 0: the d-simplices containing the seed, at most 720 of them (a seed on a lattice vertex
+  // lies in (d+1)! of them, 3.6 million for d = 9: see generic_seed); ring r+1: the neighbours of
+  // ring r across facets.
   PackedKeyIndex seen(packed_words(d_));
   std::vector<Simplex> ring, next;
   CofaceEnumerator cofaces(sigma, d_);
-  for (Simplex s; cofaces.next(s);)
+  for (Simplex s; ring.size() < 720 && cofaces.next(s);)
     if (seen.insert(s).second) ring.push_back(s);
   bool outside_hit = false;
   for (int r = 0; r <= options_.seed_search_rings && !ring.empty(); ++r) {
