@@ -36,7 +36,8 @@ struct TraceCliOptions {
   TriangulationOptions tri;
   std::vector<std::string> seeds, domains;
   bool auto_seed = false, json = false, quiet = false, no_output = false;
-  std::size_t max_simplices = 20'000'000;
+  std::uint64_t max_simplices = 20'000'000;
+  std::uint64_t max_memory = default_memory_limit();
   int threads = 0;  // all hardware threads
   std::string box;
   std::optional<double> domain_ball;
@@ -175,7 +176,12 @@ void run(TraceCliOptions o) {
   }
 
   TraceOptions options;
-  options.max_simplices = o.max_simplices;
+  // Memory bounds the run too, through an estimate per simplex (deterministic, unlike a measure of
+  // the process): the smaller limit applies, and the summary names it.
+  const int m = d - f->codimension();
+  const std::uint64_t by_memory = o.max_memory / estimated_bytes_per_simplex(m);
+  const bool memory_binds = by_memory < o.max_simplices;
+  options.max_simplices = memory_binds ? std::max<std::uint64_t>(by_memory, 1) : o.max_simplices;
   Box search_box{std::vector<double>(d, -extent), std::vector<double>(d, extent)};
   if (!o.box.empty()) {
     const std::vector<double> b = parse_point(o.box, "--box");
@@ -285,7 +291,11 @@ void run(TraceCliOptions o) {
   }
   const double trace_s = seconds_since(t0);
   const auto status = traced.status;
-  const std::string message = traced.message;
+  const std::string message =
+      traced.status == TraceStatus::max_simplices_reached && memory_binds
+          ? "stopped at " + std::to_string(options.max_simplices) + " simplices, about the memory limit of " +
+                std::to_string(o.max_memory >> 20) + " MiB (--max-memory); give a larger --edge-length, a domain, or more memory"
+          : traced.message;
   const std::uint64_t evaluations = traced.function_evaluations, oracle_calls = traced.oracle_calls;
 
   if (progress) progress->phase("building the cell complex");
@@ -398,6 +408,10 @@ void register_trace(CLI::App& app, int& status) {
   cmd->add_option("--max-simplices", o->max_simplices, "stop when this many simplices are traced")
       ->capture_default_str()
       ->check(unsigned_integer());
+  cmd->add_option_function<std::string>(
+         "--max-memory", [o](const std::string& text) { o->max_memory = parse_bytes(text, "--max-memory"); },
+         "stop before tracing more than fits in about this much memory: bytes, or with a suffix K, M, G, T "
+         "(default: 3/4 of the machine's memory)");
   cmd->add_option("--box", o->box,
                   "lo1,...,lod,hi1,...,hid: stop at this box and search seeds in it (--function: default [-2,2]^d)");
   cmd->add_option("--domain", o->domains, "keep the part where this expression is < 0; repeat to intersect")->take_all();

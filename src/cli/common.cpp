@@ -2,6 +2,9 @@
 #include "coxmesh/io/number_rows.h"
 #include "coxmesh/util/parse_number.h"
 
+#include <unistd.h>
+
+#include <cctype>
 #include <cmath>
 #include <iostream>
 
@@ -86,6 +89,29 @@ std::string printable(const std::string& text, std::size_t max_length) {
     else out += static_cast<char>(c);
   }
   return out;
+}
+
+std::uint64_t parse_bytes(const std::string& text, const std::string& what) {
+  std::string digits = text;
+  int shift = 0;
+  if (!digits.empty()) {
+    const std::string suffixes = "KMGT";
+    if (const auto at = suffixes.find(static_cast<char>(std::toupper(static_cast<unsigned char>(digits.back()))));
+        at != std::string::npos) {
+      shift = 10 * static_cast<int>(at + 1);
+      digits.pop_back();
+    }
+  }
+  const std::optional<std::uint64_t> v = parse_unsigned(digits);
+  if (!v || *v == 0 || *v > (~std::uint64_t{0} >> shift))
+    throw InputError(what + ": '" + printable(text) + "' is not a positive size (bytes, or a number with K, M, G or T)");
+  return *v << shift;
+}
+
+std::uint64_t default_memory_limit() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
+  if (pages <= 0 || page <= 0) return std::uint64_t{16} << 30;
+  return static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) / 4 * 3;
 }
 
 const CLI::Validator& unsigned_integer() {

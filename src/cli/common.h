@@ -31,6 +31,11 @@ std::vector<double> parse_point(const std::string& text, const std::string& what
 /// at max_length bytes. Bytes that are not UTF-8 are for the JSON writer to replace (error_handler).
 std::string printable(const std::string& text, std::size_t max_length = 200);
 
+/// "8G", "500M", "1048576": bytes, with an optional suffix K, M, G or T (powers of 1024); > 0.
+std::uint64_t parse_bytes(const std::string& text, const std::string& what);
+/// Three quarters of the machine's physical memory (16 GiB when it cannot be read).
+std::uint64_t default_memory_limit();
+
 /// CLI11 check of an unsigned option: all digits, below 2^64 (CLI11 itself wraps "-5" around).
 const CLI::Validator& unsigned_integer();
 

@@ -1,6 +1,8 @@
 // Thesis §4.3; spec §2.4: the cell complex by coface generation, level by level.
 #include "coxmesh/cell_complex/cell_complex.h"
 
+#include <algorithm>
+
 #include <atomic>
 
 #include "coxmesh/lattice/cofaces.h"
@@ -190,6 +192,14 @@ CellComplex build_cell_complex(TraceResult&& trace, int threads) {
   for (auto& l : cc.boundary)
     if (l.simplices.words() != packed_words(d)) l.simplices = PackedKeyIndex(packed_words(d));
   return cc;
+}
+
+std::size_t estimated_bytes_per_simplex(int m) {
+  constexpr std::size_t kBytesPerCell = 220;
+  constexpr std::size_t kCellsPerSimplex[] = {1, 2, 6, 16, 62};
+  std::size_t cells = kCellsPerSimplex[std::clamp(m, 0, 4)];
+  for (int j = 4; j < m && cells < (std::size_t{1} << 40); ++j) cells *= 4;
+  return kBytesPerCell * cells;
 }
 
 }  // namespace coxmesh
