@@ -15,9 +15,9 @@
 #include "coxmesh/io/write_mesh.h"
 #include "coxmesh/oracle/expression_function.h"
 #include "coxmesh/oracle/implicit_oracle.h"
+#include "coxmesh/oracle/presets.h"
 #include "coxmesh/tracing/seeds.h"
 #include "coxmesh/util/parallel_for.h"
-#include "presets.h"
 #include "report.h"
 
 namespace coxmesh::cli {
@@ -86,18 +86,6 @@ class ProgressDisplay {
   Clock::time_point start_, last_;
 };
 
-// max(a, b): the intersection of two domains {a < 0} and {b < 0}.
-FunctionPtr intersect_domains(FunctionPtr a, FunctionPtr b) {
-  if (!a) return b;
-  const int d = a->ambient_dimension();
-  return make_function(d, 1, [a, b](const double* x, double* v) {
-    double va, vb;
-    a->evaluate(x, &va);
-    b->evaluate(x, &vb);
-    v[0] = std::max(va, vb);
-  });
-}
-
 void run(TraceCliOptions o) {
   // The manifold and its domain. Built again for every worker thread: expression functions
   // (muparser) are not thread-safe, so each worker gets its own.
@@ -125,13 +113,13 @@ void run(TraceCliOptions o) {
       if (static_cast<int>(c.size()) != d) throw InputError("--domain-center must have " + std::to_string(d) + " coordinates");
       domain = ball_domain(c, *o.domain_ball);
     }
-    for (const std::string& text : o.domains) domain = intersect_domains(domain, expression_domain(text, d));
+    for (const std::string& text : o.domains) domain = domain_intersection(domain, expression_domain(text, d));
     if (!o.cut.empty()) {
       std::vector<double> nc = parse_point(o.cut, "--cut");
       if (static_cast<int>(nc.size()) != d + 1) throw InputError("--cut needs d+1 = " + std::to_string(d + 1) + " numbers n1,...,nd,c");
       const double c = nc.back();
       nc.pop_back();
-      domain = intersect_domains(domain, half_space_domain(nc, c));
+      domain = domain_intersection(domain, half_space_domain(nc, c));
     }
     return {f, domain};
   };
