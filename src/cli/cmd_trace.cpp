@@ -167,27 +167,17 @@ void run(TraceCliOptions o) {
   if (!tri.scale && !tri.edge_length && tri.matrix_file.empty()) tri.edge_length = default_edge;
   const Triangulation t = tri.build(d);
 
-  std::vector<std::vector<double>> seeds;
+  std::vector<std::vector<double>> given;
   for (const std::string& s : o.seeds) {
     std::vector<double> x = parse_point(s, "--seed");
     if (static_cast<int>(x.size()) != d)
       throw InputError("--seed " + s + " has " + std::to_string(x.size()) + " coordinates, expected " + std::to_string(d));
-    seeds.push_back(project_onto_manifold(*f, x).value_or(x));
+    given.push_back(std::move(x));
   }
-  if (seeds.empty() && !f->seed().empty()) seeds.push_back(f->seed());
-  std::size_t automatic = 0;
-  if (o.auto_seed || seeds.empty()) {
-    auto found = find_seeds(*f, domain.get(), search_box);
-    automatic = found.size();
-    if (seeds.empty() && found.empty()) {
-      std::ostringstream box_text;
-      for (int i = 0; i < d; ++i) box_text << (i ? " x [" : "[") << search_box.lo[i] << "," << search_box.hi[i] << "]";
-      throw InputError("no point of the manifold found in the box " + box_text.str() +
-                       (domain ? " inside the domain" : "") + ": give --box lo1,...,lod,hi1,...,hid or --seed");
-    }
-    options.skip_unusable_seeds = true;
-    seeds.insert(seeds.end(), found.begin(), found.end());
-  }
+  SeedChoice choice = choose_seeds(*f, domain.get(), given, o.auto_seed, search_box);
+  const std::vector<std::vector<double>>& seeds = choice.seeds;
+  const std::size_t automatic = choice.automatic;
+  options.skip_unusable_seeds = choice.skip_unusable;
 
   std::optional<ProgressDisplay> progress;
   if (!o.json && !o.quiet) {

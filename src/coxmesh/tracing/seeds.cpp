@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <random>
+#include <sstream>
 
 namespace coxmesh {
 
@@ -60,6 +61,31 @@ std::vector<std::vector<double>> find_seeds(const ImplicitFunction& f, const Imp
     seeds.push_back(std::move(*p));
   }
   return seeds;
+}
+
+SeedChoice choose_seeds(const ImplicitFunction& f, const ImplicitFunction* domain,
+                        const std::vector<std::vector<double>>& given, bool automatic, const Box& box) {
+  const int d = f.ambient_dimension();
+  SeedChoice choice;
+  for (const std::vector<double>& x : given) {
+    if (static_cast<int>(x.size()) != d)
+      throw InputError("a seed has " + std::to_string(x.size()) + " coordinates, expected " + std::to_string(d));
+    choice.seeds.push_back(project_onto_manifold(f, x).value_or(x));
+  }
+  if (choice.seeds.empty() && !f.seed().empty()) choice.seeds.push_back(f.seed());
+  if (automatic || choice.seeds.empty()) {
+    auto found = find_seeds(f, domain, box);
+    choice.automatic = found.size();
+    if (choice.seeds.empty() && found.empty()) {
+      std::ostringstream box_text;
+      for (int i = 0; i < d; ++i) box_text << (i ? " x [" : "[") << box.lo[i] << "," << box.hi[i] << "]";
+      throw InputError("no point of the manifold found in the box " + box_text.str() +
+                       (domain ? " inside the domain" : "") + ": give a larger box or a seed");
+    }
+    choice.skip_unusable = true;
+    choice.seeds.insert(choice.seeds.end(), found.begin(), found.end());
+  }
+  return choice;
 }
 
 }  // namespace coxmesh

@@ -21,4 +21,18 @@ std::optional<std::vector<double>> project_onto_manifold(const ImplicitFunction&
 std::vector<std::vector<double>> find_seeds(const ImplicitFunction& f, const ImplicitFunction* domain, const Box& box,
                                             int samples = 2000, std::uint64_t rng_seed = 1);
 
+/// The seeds of a trace, as `coxmesh trace` and the Python package choose them.
+struct SeedChoice {
+  std::vector<std::vector<double>> seeds;
+  std::size_t automatic = 0;   ///< how many of them find_seeds found
+  bool skip_unusable = false;  ///< for TraceOptions::skip_unusable_seeds (true when any was found automatically)
+};
+
+/// Each given point projected onto M (kept as given when the projection fails), else F's own seed;
+/// then, when `automatic` is set or no seed is known, find_seeds in `box` (and the domain).
+///   Throws InputError when a given point has the wrong size, or no seed is known and none is found
+///   (the message names the box).
+SeedChoice choose_seeds(const ImplicitFunction& f, const ImplicitFunction* domain,
+                        const std::vector<std::vector<double>>& given, bool automatic, const Box& box);
+
 }  // namespace coxmesh
