@@ -17,7 +17,9 @@ namespace coxmesh::python {
 py::array_t<double, py::array::c_style> point_rows(const py::handle& points, int d, const std::string& what) {
   auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(points);
   if (!a) throw InputError(what + " must be an array of numbers");
-  if (a.ndim() == 1 && a.shape(0) == d) a = a.reshape({py::ssize_t{1}, py::ssize_t{d}});
+  if (a.ndim() == 1 && a.shape(0) != d)
+    throw InputError(what + " has " + std::to_string(a.shape(0)) + " coordinates, expected " + std::to_string(d));
+  if (a.ndim() == 1) a = a.reshape({py::ssize_t{1}, py::ssize_t{d}});
   if (a.ndim() != 2 || a.shape(1) != d)
     throw InputError(what + " must have shape (n, " + std::to_string(d) + "), got " +
                      std::string(py::str(py::tuple(py::cast(std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim()))))));
