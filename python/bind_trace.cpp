@@ -203,7 +203,8 @@ std::unique_ptr<Mesh> trace(const TraceArguments& a) {
   const bool show = py::isinstance<py::bool_>(a.progress) && a.progress.cast<bool>();
   const bool report = !show && !a.progress.is_none() && !py::isinstance<py::bool_>(a.progress);
   if (report && !PyCallable_Check(a.progress.ptr())) throw InputError("progress must be True, False or a callable f(traced_simplices)");
-  Clock::time_point last = Clock::now();
+  const Clock::time_point start = Clock::now();
+  Clock::time_point last = start, last_shown = start;
   options.progress_interval = 2048;
   options.progress = [&](std::size_t traced) {
     if (seconds_since(last) < 0.05) return;
@@ -211,7 +212,10 @@ std::unique_ptr<Mesh> trace(const TraceArguments& a) {
     py::gil_scoped_acquire gil;
     if (PyErr_CheckSignals() != 0) throw py::error_already_set();
     if (report) a.progress(traced);
-    if (show) std::fprintf(stderr, "coxmesh: tracing: %zu simplices\n", traced);
+    if (show && seconds_since(last_shown) >= 1.0) {  // a line a second, as the command line does
+      last_shown = Clock::now();
+      std::fprintf(stderr, "coxmesh: tracing: %zu simplices, %.1f s\n", traced, seconds_since(start));
+    }
   };
   options.threads = python_code ? 1 : resolve_threads(a.threads);
 
@@ -302,7 +306,8 @@ The ambient triangulation:
 
   threads       worker threads (0: all hardware threads); the result is the same for every number.
                 Python callables run on one thread.
-  progress      True prints the traced count to stderr; a callable gets it, every ~0.05 s at most.
+  progress      True prints the traced count to stderr once a second; a callable f(traced) is
+                called with it every ~0.05 s at most.
 
 Returns a coxmesh.Mesh. Raises InputError/SeedError/EvaluationError (ValueErrors) with the
 library's messages; an exception raised by a callable propagates unchanged; Ctrl-C raises
