@@ -56,8 +56,6 @@ struct Problem {
   FunctionPtr f, domain;
 };
 
-}  // namespace
-
 // The arguments of trace(), named after the options of `coxmesh trace`.
 struct TraceArguments {
   py::object function, preset, m, dim, radius, minor_radius, center, domain, seeds, box, edge_length, scale, matrix,
@@ -66,8 +64,6 @@ struct TraceArguments {
   int threads;
   std::size_t max_simplices;
 };
-
-namespace {
 
 std::unique_ptr<Mesh> trace(const TraceArguments& a) {
   auto mesh = std::make_unique<Mesh>();
@@ -135,14 +131,13 @@ std::unique_ptr<Mesh> trace(const TraceArguments& a) {
     }
   }
   const FunctionPtr preset_domain = preset ? preset->domain : nullptr;
-  auto make_problem = [&]() {
-    Problem p{make_f(), preset_domain};
-    for (const std::string& text : domain_texts) p.domain = domain_intersection(p.domain, expression_domain(text, d));
-    for (const FunctionPtr& g : domain_callables) p.domain = domain_intersection(p.domain, g);
-    return p;
+  auto make_domain = [&]() {
+    FunctionPtr domain = preset_domain;
+    for (const std::string& text : domain_texts) domain = domain_intersection(domain, expression_domain(text, d));
+    for (const FunctionPtr& g : domain_callables) domain = domain_intersection(domain, g);
+    return domain;
   };
-  Problem problem = make_problem();
-  problem.f = f;
+  const Problem problem{f, make_domain()};
 
   // The box (searching seeds; bounding the walk when given, or for a function) and the default
   // scale, as `coxmesh trace` chooses them.
@@ -227,7 +222,7 @@ std::unique_ptr<Mesh> trace(const TraceArguments& a) {
     const auto shared = options.threads > 1 ? ImplicitOracle::make_shared_values(*t, problem.f, problem.domain) : nullptr;
     bool first = true;
     TraceResult traced = trace_manifold(*t, [&]() -> std::unique_ptr<IntersectionOracle> {
-      const Problem p = first ? problem : make_problem();
+      const Problem p = first ? problem : Problem{make_f(), make_domain()};
       first = false;
       return std::make_unique<ImplicitOracle>(*t, p.f, p.domain, shared);
     }, seeds.seeds, options);
