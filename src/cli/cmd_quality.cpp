@@ -12,7 +12,7 @@
 
 #include "commands.h"
 #include "common.h"
-#include "coxmesh/quality/measures.h"
+#include "coxmesh/quality/table_row.h"
 
 namespace coxmesh::cli {
 
@@ -30,35 +30,9 @@ struct QualityOptions {
   std::string plot, measure = "thickness", y_scale = "auto";
 };
 
-// One output row: the numeric measures by name (nullopt for "not defined") and the Delaunay answers.
-struct Row {
-  Family family;
-  int dimension;
-  std::vector<std::pair<std::string, std::optional<double>>> numbers;
-  std::string delaunay, delaunay_direct;
-};
-
-const std::vector<std::string>& numeric_keys() {
-  static const std::vector<std::string> keys{
-      "longest_edge",      "shortest_edge",         "edge_ratio",      "min_height",
-      "circumradius",      "inradius",              "volume",          "thickness",
-      "thickness_normalized", "radius_ratio",       "fatness",         "aspect_ratio",
-      "thickness_relative", "radius_ratio_relative", "fatness_relative", "aspect_ratio_relative",
-      "circumcentre_min_barycentric", "protection", "protection_direct"};
-  return keys;
-}
-
-Row make_row(const CoxeterQuality& q) {
-  const auto& m = q.measures;
-  Row r{q.family, q.dimension, {}, to_string(q.delaunay.status), to_string(q.delaunay_direct->status)};
-  const std::vector<std::optional<double>> values{
-      m.longest_edge, m.shortest_edge, m.edge_ratio, m.min_height, m.circumradius, m.inradius, m.volume,
-      m.thickness, m.thickness_normalized, m.radius_ratio, m.fatness, m.aspect_ratio, q.relative.thickness,
-      q.relative.radius_ratio, q.relative.fatness, q.relative.aspect_ratio, m.circumcentre_barycentric.minCoeff(),
-      q.delaunay.protection, q.delaunay_direct->protection};
-  for (std::size_t k = 0; k < values.size(); ++k) r.numbers.emplace_back(numeric_keys()[k], values[k]);
-  return r;
-}
+using Row = quality::QualityRow;
+using quality::numeric_keys;
+Row make_row(const CoxeterQuality& q) { return quality::table_row(q); }
 
 std::optional<double> value(const Row& r, const std::string& key) {
   for (const auto& [k, v] : r.numbers)

@@ -19,9 +19,9 @@
 #include "coxmesh/oracle/expression_function.h"
 #include "coxmesh/oracle/implicit_oracle.h"
 #include "coxmesh/oracle/regularity.h"
+#include "coxmesh/oracle/presets.h"
 #include "coxmesh/tracing/seeds.h"
 #include "coxmesh/util/parallel_for.h"
-#include "presets.h"
 #include "report.h"
 
 namespace coxmesh::cli {
@@ -92,18 +92,6 @@ class ProgressDisplay {
   Clock::time_point start_, last_;
 };
 
-// max(a, b): the intersection of two domains {a < 0} and {b < 0}.
-FunctionPtr intersect_domains(FunctionPtr a, FunctionPtr b) {
-  if (!a) return b;
-  const int d = a->ambient_dimension();
-  return make_function(d, 1, [a, b](const double* x, double* v) {
-    double va, vb;
-    a->evaluate(x, &va);
-    b->evaluate(x, &vb);
-    v[0] = std::max(va, vb);
-  });
-}
-
 void run(TraceCliOptions o) {
   // The manifold and its domain. Built again for every worker thread: expression functions
   // (muparser) are not thread-safe, so each worker gets its own.
@@ -142,13 +130,13 @@ void run(TraceCliOptions o) {
       if (static_cast<int>(c.size()) != d) throw InputError("--domain-center must have " + std::to_string(d) + " coordinates");
       domain = ball_domain(c, *o.domain_ball);
     }
-    for (const std::string& text : o.domains) domain = intersect_domains(domain, expression_domain(text, d));
+    for (const std::string& text : o.domains) domain = domain_intersection(domain, expression_domain(text, d));
     if (!o.cut.empty()) {
       std::vector<double> nc = parse_point(o.cut, "--cut");
       if (static_cast<int>(nc.size()) != d + 1) throw InputError("--cut needs d+1 = " + std::to_string(d + 1) + " numbers n1,...,nd,c");
       const double c = nc.back();
       nc.pop_back();
-      domain = intersect_domains(domain, half_space_domain(nc, c));
+      domain = domain_intersection(domain, half_space_domain(nc, c));
     }
     return {f, domain};
   };
@@ -197,10 +185,10 @@ void run(TraceCliOptions o) {
   const bool bounded_by_box = !o.box.empty() || (from_text && o.seeds.empty());
   if (bounded_by_box) {
     FunctionPtr box = box_domain(search_box);
-    domain = intersect_domains(domain, box);
+    domain = domain_intersection(domain, box);
     make_problem = [inner = make_problem, box] {
       auto [fw, dw] = inner();
-      return std::pair{fw, intersect_domains(dw, box)};
+      return std::pair{fw, domain_intersection(dw, box)};
     };
   }
   if (from_text) {  // default scale: 40 edges across the narrowest side of the box
@@ -212,51 +200,17 @@ void run(TraceCliOptions o) {
   if (!tri.scale && !tri.edge_length && tri.matrix_file.empty()) tri.edge_length = default_edge;
   const Triangulation t = tri.build(d);
 
-  std::vector<std::vector<double>> seeds;
+  std::vector<std::vector<double>> given;
   for (const std::string& s : o.seeds) {
     std::vector<double> x = parse_point(s, "--seed");
     if (static_cast<int>(x.size()) != d)
       throw InputError("--seed " + s + " has " + std::to_string(x.size()) + " coordinates, expected " + std::to_string(d));
-    seeds.push_back(project_onto_manifold(*f, x).value_or(x));
+    given.push_back(std::move(x));
   }
-  if (seeds.empty() && !f->seed().empty()) seeds.push_back(f->seed());
-  std::size_t automatic = 0;
-  if (o.auto_seed || seeds.empty()) {
-    auto found = find_seeds(*f, domain.get(), search_box);
-    automatic = found.size();
-    if (seeds.empty() && found.empty()) {
-      // Not finite where sampled (0/0, 1/0, log of a negative): say that, not "no point found".
-      std::mt19937_64 random(1);
-      std::vector<double> x(d), value(f->codimension());
-      int finite = 0;
-      std::string example;
-      for (int sample = 0; sample < 64; ++sample) {
-        for (int i = 0; i < d; ++i)
-          x[i] = search_box.lo[i] + std::uniform_real_distribution<double>(0, 1)(random) * (search_box.hi[i] - search_box.lo[i]);
-        f->evaluate(x.data(), value.data());
-        const bool ok = std::all_of(value.begin(), value.end(), [](double v) { return std::isfinite(v); });
-        finite += ok;
-        if (!ok && example.empty()) {
-          std::ostringstream at;
-          at << "(";
-          for (int i = 0; i < d; ++i) at << (i ? "," : "") << x[i];
-          at << ")";
-          example = at.str();
-        }
-      }
-      if (finite == 0)
-        throw InputError("F is not finite at any of 64 points sampled in the box (e.g. at " + example +
-                         "): check the expression for divisions by zero and logarithms or roots of negative numbers");
-      std::ostringstream box_text;
-      for (int i = 0; i < d; ++i) box_text << (i ? " x [" : "[") << search_box.lo[i] << "," << search_box.hi[i] << "]";
-      throw InputError("no point of the manifold found in the box " + box_text.str() +
-                       (domain ? " inside the domain" : "") + ": give --box lo1,...,lod,hi1,...,hid or --seed");
-    }
-    options.skip_unusable_seeds = true;
-    seeds.insert(seeds.end(), found.begin(), found.end());
-  }
-
-  for (auto& seed : seeds) seed = generic_seed(*f, t, std::move(seed));
+  SeedChoice choice = choose_seeds(*f, domain.get(), given, o.auto_seed, search_box, t);
+  const std::vector<std::vector<double>>& seeds = choice.seeds;
+  const std::size_t automatic = choice.automatic;
+  options.skip_unusable_seeds = choice.skip_unusable;
 
   std::optional<ProgressDisplay> progress;
   if (!o.json && !o.quiet) {

@@ -206,4 +206,37 @@ FunctionPtr box_domain(const Box& box) {
   }, {});
 }
 
+namespace {
+// max(a, b), passing batches through to both (see domain_intersection).
+class DomainIntersection final : public ImplicitFunction {
+ public:
+  DomainIntersection(FunctionPtr a, FunctionPtr b) : a_(std::move(a)), b_(std::move(b)) {}
+  int ambient_dimension() const override { return a_->ambient_dimension(); }
+  int codimension() const override { return 1; }
+  void evaluate(const double* x, double* value) const override {
+    double vb;
+    a_->evaluate(x, value);
+    b_->evaluate(x, &vb);
+    value[0] = std::max(value[0], vb);
+  }
+  void evaluate_batch(const double* xs, int n, double* values) const override {
+    std::vector<double> vb(n);
+    a_->evaluate_batch(xs, n, values);
+    b_->evaluate_batch(xs, n, vb.data());
+    for (int i = 0; i < n; ++i) values[i] = std::max(values[i], vb[i]);
+  }
+  bool prefers_batches() const override { return a_->prefers_batches() || b_->prefers_batches(); }
+
+ private:
+  FunctionPtr a_, b_;
+};
+}  // namespace
+
+FunctionPtr domain_intersection(FunctionPtr a, FunctionPtr b) {
+  if (!a) return b;
+  require(b && a->ambient_dimension() == b->ambient_dimension() && a->codimension() == 1 && b->codimension() == 1,
+          "domains to intersect must both map R^d to R");
+  return std::make_shared<DomainIntersection>(std::move(a), std::move(b));
+}
+
 }  // namespace coxmesh

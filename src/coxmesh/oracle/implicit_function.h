@@ -23,6 +23,10 @@ class ImplicitFunction {
   }
   /// A point on the zero set when one is known in closed form (empty otherwise).
   virtual std::vector<double> seed() const { return {}; }
+  /// True when evaluate_batch on many points costs much less than as many evaluate() calls (a
+  /// function written in an interpreted language): ImplicitOracle then evaluates the vertices of a
+  /// whole breadth-first level in one call (still once per vertex). False for the built-ins.
+  virtual bool prefers_batches() const { return false; }
 };
 
 using FunctionPtr = std::shared_ptr<const ImplicitFunction>;
@@ -93,6 +97,9 @@ FunctionPtr box_domain(const Box& box);
 FunctionPtr ball_domain(const std::vector<double>& center, double radius);
 /// ⟨n, x⟩ − c: the half-space ⟨n, x⟩ < c.
 FunctionPtr half_space_domain(const std::vector<double>& normal, double c);
+/// max(a, b): the intersection {a < 0} ∩ {b < 0} of two domains (b alone when a is null). Evaluates
+/// in batches when either does.
+FunctionPtr domain_intersection(FunctionPtr a, FunctionPtr b);
 
 }  // namespace coxmesh
 

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "coxmesh/lattice/cofaces.h"
+#include "coxmesh/lattice/faces.h"
 #include "coxmesh/oracle/transversality.h"
 
 namespace coxmesh {
@@ -31,6 +33,7 @@ ImplicitOracle::ImplicitOracle(const Triangulation& triangulation, FunctionPtr f
   } else {
     cache_ = PackedKeyIndex(d_);
   }
+  batches_ = !shared_ && (f_->prefers_batches() || (domain_ && domain_->prefers_batches()));
   front_keys_.resize(kFrontSlots * d_);
   front_values_.resize(kFrontSlots * stride_);
   front_used_.assign(kFrontSlots, 0);
@@ -83,6 +86,53 @@ void ImplicitOracle::evaluate(const std::int32_t* v, double* out) {
   ++evaluations_;
   for (int i = 0; i < stride_; ++i)
     if (!std::isfinite(out[i])) throw EvaluationError(not_finite_message(v, i, out[i]));
+}
+
+// Every cofacet μ of τ ∈ S adds one vertex to τ's; the walk reads F there (pivot_exit, or intersect
+// on μ's other facets, which all contain it), so evaluating it now adds no evaluation.
+void ImplicitOracle::prefetch(std::span<const std::uint32_t> packed_simplices) {
+  if (!batches_ || !cache_enabled_) return;
+  const int words = packed_words(d_);
+  const std::uint32_t cached = cache_.size();  // the new vertices get the ids cached, cached + 1, ...
+  CofaceEnumerator cofacets;
+  std::int32_t v[kMaxDimension];
+  for (std::size_t i = 0; i + words <= packed_simplices.size(); i += words) {
+    const Simplex tau = unpack(packed_simplices.data() + i, d_);
+    cofacets.reset(tau, tau.k + 1);
+    while (const Simplex* mu = cofacets.next()) {
+      mu->vertex(extra_vertex_index(tau, *mu), v);
+      cache_.insert(reinterpret_cast<const std::uint32_t*>(v));
+    }
+  }
+  const int n = static_cast<int>(cache_.size() - cached);
+  if (n == 0) return;
+  const auto vertex = [&](int i) { return reinterpret_cast<const std::int32_t*>(cache_.key(cached + i)); };
+  batch_points_.resize(static_cast<std::size_t>(n) * d_);
+  for (int i = 0; i < n; ++i) triangulation_.cartesian(vertex(i), batch_points_.data() + static_cast<std::size_t>(i) * d_);
+  values_.resize(static_cast<std::size_t>(cached + n) * stride_);
+  double* out = values_.data() + static_cast<std::size_t>(cached) * stride_;
+  try {
+    if (!domain_) {
+      f_->evaluate_batch(batch_points_.data(), n, out);
+    } else {  // F's k values and D's one, interleaved per vertex
+      batch_values_.resize(static_cast<std::size_t>(n) * (k_ + 1));
+      f_->evaluate_batch(batch_points_.data(), n, batch_values_.data());
+      domain_->evaluate_batch(batch_points_.data(), n, batch_values_.data() + static_cast<std::size_t>(n) * k_);
+      for (int i = 0; i < n; ++i) {
+        std::copy_n(batch_values_.data() + static_cast<std::size_t>(i) * k_, k_, out + static_cast<std::size_t>(i) * stride_);
+        out[static_cast<std::size_t>(i) * stride_ + k_] = batch_values_[static_cast<std::size_t>(n) * k_ + i];
+      }
+    }
+    evaluations_ += n;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < stride_; ++j)
+        if (const double x = out[static_cast<std::size_t>(i) * stride_ + j]; !std::isfinite(x))
+          throw EvaluationError(not_finite_message(vertex(i), j, x));
+  } catch (...) {  // the cache keeps only evaluated vertices
+    cache_.truncate(cached);
+    values_.resize(static_cast<std::size_t>(cached) * stride_);
+    throw;
+  }
 }
 
 std::string ImplicitOracle::not_finite_message(const std::int32_t* v, int i, double value) const {

@@ -44,6 +44,10 @@ class ImplicitOracle final : public IntersectionOracle {
   std::uint64_t function_evaluations() const override { return evaluations_; }
   bool pivot_enter(const Simplex& tau) override;
   int pivot_exit(const std::int32_t* v) override;
+  /// When F or D prefers batches (and without SharedVertexValues): evaluates, in one
+  /// evaluate_batch call each, every lattice vertex of the level's cofacets not cached yet. The
+  /// walk evaluates each of them anyway, so F is still called once per vertex.
+  void prefetch(std::span<const std::uint32_t> packed_simplices) override;
 
   /// Switches the private per-vertex cache off (every query re-evaluates F): the benchmark's ablation.
   void set_cache_enabled(bool on) { cache_enabled_ = on; }
@@ -69,6 +73,8 @@ class ImplicitOracle final : public IntersectionOracle {
   PackedKeyIndex cache_;  // without shared_: every vertex this oracle met
   HugeVector<double> values_;  // stride_ per cached vertex: F values, then D
   std::vector<double> scratch_;
+  bool batches_ = false;                         // prefetch evaluates levels in batches
+  std::vector<double> batch_points_, batch_values_;  // prefetch's vertices (Cartesian) and F, D there
   SmallLu pivot_lu_;                        // M(τ) of the last pivot_enter
   std::array<double, SmallLu::kMaxN> pivot_lambda_;  // its barycentric solution (k = 1: F at τ's ends)
   std::uint64_t evaluations_ = 0;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 
 #include "coxmesh/lattice/simplex.h"
 
@@ -35,6 +36,11 @@ class IntersectionOracle {
   /// intersect(), so a wrong guess costs time, never correctness. The defaults make no guesses.
   virtual bool pivot_enter(const Simplex& /*tau*/) { return false; }
   virtual int pivot_exit(const std::int32_t* /*v*/) { return -1; }
+
+  /// Optional: the k-simplices of the breadth-first level about to be walked, packed (pack(),
+  /// packed_words(d) words each), before any of their cofacets is tested. An oracle may use it to
+  /// compute in one batch what the walk will ask for (the default does nothing).
+  virtual void prefetch(std::span<const std::uint32_t> /*packed_simplices*/) {}
 };
 
 /// A function returned NaN or ±Inf at a point; the message names the point.

@@ -28,4 +28,20 @@ std::vector<double> generic_seed(const ImplicitFunction& f, const Triangulation&
 std::vector<std::vector<double>> find_seeds(const ImplicitFunction& f, const ImplicitFunction* domain, const Box& box,
                                             int samples = 2000, std::uint64_t rng_seed = 1);
 
+/// The seeds of a trace, as `coxmesh trace` and the Python package choose them.
+struct SeedChoice {
+  std::vector<std::vector<double>> seeds;
+  std::size_t automatic = 0;   ///< how many of them find_seeds found
+  bool skip_unusable = false;  ///< for TraceOptions::skip_unusable_seeds (true when any was found automatically)
+};
+
+/// Each given point projected onto M (kept as given when the projection fails), else F's own seed;
+/// then, when `automatic` is set or no seed is known, find_seeds in `box` (and the domain); every
+/// seed is finally moved off the lower-dimensional faces of `t` (generic_seed).
+///   Throws InputError when a given point has the wrong size, or no seed is known and none is found
+///   (the message names the box, or says that F is not finite where it was sampled).
+SeedChoice choose_seeds(const ImplicitFunction& f, const ImplicitFunction* domain,
+                        const std::vector<std::vector<double>>& given, bool automatic, const Box& box,
+                        const Triangulation& t);
+
 }  // namespace coxmesh

@@ -259,7 +259,7 @@ bool Tracer::start_level() {
     result_.status = TraceStatus::max_simplices_reached;
     return false;
   }
-  if (options_.progress && result_.simplices.size() >= last_progress_ + 65536) {
+  if (options_.progress && result_.simplices.size() >= last_progress_ + options_.progress_interval) {
     last_progress_ = result_.simplices.size();
     options_.progress(last_progress_);
   }
@@ -304,7 +304,10 @@ void Tracer::walk_sequential() {
   CofaceEnumerator cofacets;
   std::int32_t v[kMaxDimension];
   for (; head_ < result_.simplices.size(); ++head_) {
-    if (head_ >= level_end_ && !start_level()) return;
+    if (head_ >= level_end_) {
+      if (!start_level()) return;
+      oracle_.prefetch({result_.simplices.key(head_), std::size_t{level_end_ - head_} * packed_words(d_)});
+    }
     tau = result_.simplices.simplex(head_, d_);
     const bool pivots = oracle_.pivot_enter(tau);
     cofacets.reset(tau, k_ + 1);

@@ -21,8 +21,10 @@ struct TraceOptions {
   /// Worker threads for the OracleFactory overload (0 = all hardware threads). The result, order
   /// included, is the same for every thread count.
   int threads = 1;
-  /// Called from the walk every 65536 processed simplices with |S| so far (progress displays).
+  /// Called from the walk, where a breadth-first level starts, each time |S| has grown by
+  /// progress_interval simplices, with |S| so far (progress displays; it may throw to cancel).
   std::function<void(std::size_t traced)> progress;
+  std::size_t progress_interval = 65536;
 };
 
 /// A walk stopped by the simplex limit leaves cells open at its front: its cell complex is not

@@ -1,10 +1,10 @@
-#include "presets.h"
+#include "coxmesh/oracle/presets.h"
 
 #include <cmath>
 
 #include "coxmesh/lattice/simplex.h"
 
-namespace coxmesh::cli {
+namespace coxmesh {
 
 const std::vector<PresetInfo>& preset_catalogue() {
   static const std::vector<PresetInfo> catalogue = {
@@ -71,4 +71,4 @@ Preset make_preset(const std::string& name, const PresetParameters& p) {
   throw InputError("unknown preset '" + name + "' (known: " + names + ")");
 }
 
-}  // namespace coxmesh::cli
+}  // namespace coxmesh

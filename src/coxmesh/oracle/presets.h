@@ -1,4 +1,5 @@
-// The built-in manifolds of `coxmesh trace --preset NAME`, with their parameters and defaults.
+// The built-in manifolds by name (thesis §4.4), with their parameters and defaults: shared by
+// `coxmesh trace --preset NAME` and the Python package's `coxmesh.trace(preset=NAME)`.
 #pragma once
 
 #include <optional>
@@ -7,7 +8,7 @@
 
 #include "coxmesh/oracle/implicit_function.h"
 
-namespace coxmesh::cli {
+namespace coxmesh {
 
 struct PresetParameters {
   int m = 2;                   ///< --m: intrinsic dimension (sphere, plane)
@@ -33,4 +34,4 @@ const std::vector<PresetInfo>& preset_catalogue();
 /// Builds the preset; throws InputError for unknown names or bad parameters.
 Preset make_preset(const std::string& name, const PresetParameters& p);
 
-}  // namespace coxmesh::cli
+}  // namespace coxmesh

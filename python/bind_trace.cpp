@@ -1,0 +1,320 @@
+// coxmesh.trace(): the `coxmesh trace` command as a function (thesis Ch. 4; docs/cli.md). The
+// manifold is an expression, a Python callable (evaluated a breadth-first level per call) or a
+// preset; the walk, the cell complex and the topology run in C++ without the GIL.
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <cstdio>
+#include <optional>
+
+#include "bindings.h"
+#include "coxmesh/oracle/expression_function.h"
+#include "coxmesh/oracle/implicit_oracle.h"
+#include "coxmesh/oracle/presets.h"
+#include "coxmesh/tracing/seeds.h"
+#include "coxmesh/util/parallel_for.h"
+#include "mesh.h"
+#include "python_function.h"
+
+namespace py = pybind11;
+
+namespace coxmesh::python {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+template <class T>
+std::optional<T> optional_arg(const py::object& o) {
+  return o.is_none() ? std::nullopt : std::optional<T>(o.cast<T>());
+}
+
+std::vector<double> point(const py::handle& p, int d, const std::string& what) {
+  const auto rows = point_rows(p, d, what);
+  if (rows.shape(0) != 1) throw InputError(what + " must have " + std::to_string(d) + " coordinates");
+  return {rows.data(), rows.data() + d};
+}
+
+// The ambient dimension the arguments show, for a callable (which does not tell it).
+std::optional<int> dimension_shown(const py::object& dim, const py::object& seeds, const py::object& box,
+                                   const py::object& matrix, const py::object& triangulation) {
+  if (!dim.is_none()) return dim.cast<int>();
+  if (py::isinstance<Triangulation>(triangulation)) return triangulation.cast<const Triangulation&>().dimension();
+  if (!seeds.is_none() && py::len(seeds) > 0) return static_cast<int>(py::len(seeds[py::int_(0)]));
+  if (!matrix.is_none()) return static_cast<int>(py::len(matrix));
+  if (!box.is_none()) {
+    const auto b = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(box);
+    if (b && b.size() % 2 == 0) return static_cast<int>(b.size() / 2);
+  }
+  return std::nullopt;
+}
+
+// The functions of one worker: F and the domain. Expressions are parsed again for each worker
+// (muparser is not thread-safe); Python callables and presets are shared.
+struct Problem {
+  FunctionPtr f, domain;
+};
+
+// The arguments of trace(), named after the options of `coxmesh trace`.
+struct TraceArguments {
+  py::object function, preset, m, dim, radius, minor_radius, center, domain, seeds, box, edge_length, scale, matrix,
+      offset, triangulation, progress;
+  bool auto_seed;
+  int threads;
+  std::size_t max_simplices;
+};
+
+std::unique_ptr<Mesh> trace(const TraceArguments& a) {
+  auto mesh = std::make_unique<Mesh>();
+  const bool from_function = !a.function.is_none();
+  if (from_function && !a.preset.is_none()) throw InputError("give function or preset, not both");
+  const std::string preset_name = a.preset.is_none() ? "torus" : a.preset.cast<std::string>();
+  bool python_code = false;  // a callable among F and the domains: one thread, the GIL per batch
+
+  // F: built once here; expressions again per worker.
+  std::function<FunctionPtr()> make_f;
+  std::optional<Preset> preset;
+  if (from_function) {
+    for (const auto& [name, value] : {std::pair{"m", &a.m}, {"radius", &a.radius}, {"minor_radius", &a.minor_radius}, {"center", &a.center}})
+      if (!value->is_none()) throw InputError(std::string(name) + " is a preset parameter; it does not apply to a function");
+    if (py::isinstance<py::str>(a.function)) {
+      const std::string text = a.function.cast<std::string>();
+      const std::optional<int> dim = optional_arg<int>(a.dim);
+      make_f = [text, dim] { return expression_function(text, dim); };
+      mesh->function = text;
+      mesh->info.source = "function " + text;
+    } else {
+      const std::optional<int> d = dimension_shown(a.dim, a.seeds, a.box, a.matrix, a.triangulation);
+      if (!d) throw InputError("give dim (the ambient dimension) with a callable function");
+      std::vector<double> probe(std::max(*d, 1), 0.0);
+      if (!a.seeds.is_none() && py::len(a.seeds) > 0) probe = point(a.seeds[py::int_(0)], *d, "a seed");
+      FunctionPtr f = std::make_shared<PythonFunction>(a.function, *d, probe, "the function", *d - 1);
+      make_f = [f] { return f; };
+      python_code = true;
+      mesh->function = py::repr(a.function);
+      mesh->info.source = "python function";
+    }
+  } else {
+    PresetParameters p;
+    if (!a.m.is_none()) p.m = a.m.cast<int>();
+    p.dim = optional_arg<int>(a.dim);
+    p.radius = optional_arg<double>(a.radius);
+    p.minor_radius = optional_arg<double>(a.minor_radius);
+    if (!a.center.is_none()) p.center = a.center.cast<std::vector<double>>();
+    preset = make_preset(preset_name, p);
+    make_f = [f = preset->function] { return f; };
+    mesh->preset = preset_name;
+    mesh->info.source = "preset " + preset_name;
+  }
+  const FunctionPtr f = make_f();
+  const int d = f->ambient_dimension();
+
+  // Domains: the preset's, then each given one (an expression or a callable), intersected.
+  py::list domains;
+  if (!a.domain.is_none()) {
+    if (py::isinstance<py::str>(a.domain) || PyCallable_Check(a.domain.ptr())) domains.append(a.domain);
+    else domains = py::list(a.domain);
+  }
+  std::vector<std::string> domain_texts;
+  std::vector<FunctionPtr> domain_callables;
+  for (const py::handle& dom : domains) {
+    if (py::isinstance<py::str>(dom)) {
+      domain_texts.push_back(dom.cast<std::string>());
+      expression_domain(domain_texts.back(), d);  // checked now, before any work
+      mesh->info.source += "; domain " + domain_texts.back();
+    } else {
+      domain_callables.push_back(std::make_shared<PythonFunction>(py::reinterpret_borrow<py::object>(dom), d,
+                                                                  std::vector<double>(d, 0.0), "the domain", 1));
+      python_code = true;
+      mesh->info.source += "; domain (python function)";
+    }
+  }
+  const FunctionPtr preset_domain = preset ? preset->domain : nullptr;
+  FunctionPtr box_bound;  // the box as a domain, when it bounds the walk (below)
+  auto make_domain = [&]() {
+    FunctionPtr domain = preset_domain;
+    for (const std::string& text : domain_texts) domain = domain_intersection(domain, expression_domain(text, d));
+    for (const FunctionPtr& g : domain_callables) domain = domain_intersection(domain, g);
+    return box_bound ? domain_intersection(domain, box_bound) : domain;
+  };
+
+  // The box (searching seeds; bounding the walk when given, or for a function) and the default
+  // scale, as `coxmesh trace` chooses them.
+  const double extent = preset ? preset->extent * 1.25 : 2.0;
+  Box search_box{std::vector<double>(d, -extent), std::vector<double>(d, extent)};
+  TraceOptions options;
+  options.max_simplices = a.max_simplices;
+  if (!a.box.is_none()) {
+    const auto b = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a.box);
+    if (!b || b.size() != 2 * d)
+      throw InputError("box needs 2d = " + std::to_string(2 * d) + " numbers: (lo, hi) with d coordinates each");
+    search_box = Box{std::vector<double>(b.data(), b.data() + d), std::vector<double>(b.data() + d, b.data() + 2 * d)};
+    for (int i = 0; i < d; ++i)
+      if (!(search_box.lo[i] < search_box.hi[i])) throw InputError("box: lo must be below hi in every coordinate");
+  }
+  // The box bounds the walk as a domain (its cells closed) when given, and for a function whose
+  // seeds are searched in the default box; seeds given by hand: their whole components.
+  if (!a.box.is_none() || (from_function && a.seeds.is_none())) box_bound = box_domain(search_box);
+  const Problem problem{f, make_domain()};
+  double default_edge = preset ? preset->edge_length : 0;
+  if (from_function) {  // 40 edges across the narrowest side of the box
+    default_edge = search_box.hi[0] - search_box.lo[0];
+    for (int i = 1; i < d; ++i) default_edge = std::min(default_edge, search_box.hi[i] - search_box.lo[i]);
+    default_edge /= 40;
+  }
+
+  // The ambient triangulation.
+  if (!a.scale.is_none() && !a.edge_length.is_none()) throw InputError("give scale or edge_length, not both");
+  std::optional<Triangulation> t;
+  bool sized = false;  // the linear part is given: no default scale
+  if (py::isinstance<Triangulation>(a.triangulation)) {
+    t = a.triangulation.cast<const Triangulation&>();
+    sized = true;
+  } else if (!a.matrix.is_none()) {
+    t = Triangulation(square_matrix(a.matrix, d, "matrix"), Eigen::VectorXd::Zero(d));
+    sized = true;
+  } else {
+    const std::string kind = a.triangulation.cast<std::string>();
+    if (kind != "coxeter" && kind != "freudenthal")
+      throw InputError("triangulation must be \"coxeter\", \"freudenthal\" or a coxmesh.Triangulation, got \"" + kind + "\"");
+    t = kind == "coxeter" ? Triangulation::coxeter(d) : Triangulation::freudenthal(d);
+  }
+  if (t->dimension() != d)
+    throw InputError("the triangulation is of R^" + std::to_string(t->dimension()) + " but the manifold is in R^" + std::to_string(d));
+  if (!a.scale.is_none()) t = t->scaled(a.scale.cast<double>());
+  if (!a.edge_length.is_none()) t = t->with_longest_edge(a.edge_length.cast<double>());
+  else if (a.scale.is_none() && !sized) t = t->with_longest_edge(default_edge);
+  if (!a.offset.is_none()) {
+    const std::vector<double> b = point(a.offset, d, "offset");
+    t = t->with_offset(Eigen::Map<const Eigen::VectorXd>(b.data(), d));
+  }
+
+  // Seeds.
+  std::vector<std::vector<double>> given;
+  if (!a.seeds.is_none())
+    for (const py::handle& s : a.seeds) given.push_back(point(s, d, "a seed"));
+
+  // Ctrl-C and progress: the walk calls back every few thousand simplices; at most every 50 ms the
+  // callback takes the GIL to run Python's signal handlers (KeyboardInterrupt stops the trace) and
+  // to report progress. Python callables check signals at every batch too.
+  const bool show = py::isinstance<py::bool_>(a.progress) && a.progress.cast<bool>();
+  const bool report = !show && !a.progress.is_none() && !py::isinstance<py::bool_>(a.progress);
+  if (report && !PyCallable_Check(a.progress.ptr())) throw InputError("progress must be True, False or a callable f(traced_simplices)");
+  const Clock::time_point start = Clock::now();
+  Clock::time_point last = start, last_shown = start;
+  options.progress_interval = 2048;
+  options.progress = [&](std::size_t traced) {
+    if (seconds_since(last) < 0.05) return;
+    last = Clock::now();
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    if (report) a.progress(traced);
+    if (show && seconds_since(last_shown) >= 1.0) {  // a line a second, as the command line does
+      last_shown = Clock::now();
+      std::fprintf(stderr, "coxmesh: tracing: %zu simplices, %.1f s\n", traced, seconds_since(start));
+    }
+  };
+  options.threads = python_code ? 1 : resolve_threads(a.threads);
+
+  {
+    py::gil_scoped_release release;
+    SeedChoice seeds = choose_seeds(*problem.f, problem.domain.get(), given, a.auto_seed, search_box, *t);
+    options.skip_unusable_seeds = seeds.skip_unusable;
+    const auto t0 = Clock::now();
+    const auto shared = options.threads > 1 ? ImplicitOracle::make_shared_values(*t, problem.f, problem.domain) : nullptr;
+    bool first = true;
+    TraceResult traced = trace_manifold(*t, [&]() -> std::unique_ptr<IntersectionOracle> {
+      const Problem p = first ? problem : Problem{make_f(), make_domain()};
+      first = false;
+      return std::make_unique<ImplicitOracle>(*t, p.f, p.domain, shared);
+    }, seeds.seeds, options);
+    if (traced.simplices.size() == 0)
+      throw InputError("no simplex near the " + std::to_string(seeds.seeds.size()) +
+                       " seeds meets the manifold: the triangulation is too coarse for it (give a smaller edge_length)");
+    mesh->timings["trace_seconds"] = seconds_since(t0);
+    mesh->seeds = seeds.seeds.size();
+    mesh->automatic_seeds = seeds.automatic;
+    mesh->oracle_calls = traced.oracle_calls;
+    mesh->info.function_evaluations = traced.function_evaluations;
+    mesh->info.complete = traced.status == TraceStatus::complete;
+    mesh->info.message = traced.message;
+    const auto t1 = Clock::now();
+    mesh->cells = build_cell_complex(std::move(traced), options.threads);
+    mesh->timings["cell_complex_seconds"] = seconds_since(t1);
+    const auto t2 = Clock::now();
+    mesh->topology = analyze_topology(mesh->cells);
+    mesh->timings["topology_seconds"] = seconds_since(t2);
+  }
+  for (int r = 0; r < d; ++r)
+    for (int c = 0; c < d; ++c) mesh->info.matrix.push_back(t->matrix()(r, c));
+  mesh->info.offset.assign(t->offset().data(), t->offset().data() + d);
+  return mesh;
+}
+
+}  // namespace
+
+void bind_trace(py::module_& m) {
+  m.def("trace", [](py::object function, py::object preset, py::object m_, py::object dim, py::object radius,
+                    py::object minor_radius, py::object center, py::object domain, py::object seeds, bool auto_seed,
+                    py::object box, py::object edge_length, py::object scale, py::object matrix, py::object offset,
+                    py::object triangulation, int threads, std::size_t max_simplices, py::object progress) {
+          return trace(TraceArguments{function, preset, m_, dim, radius, minor_radius, center, domain, seeds, box, edge_length,
+                                      scale, matrix, offset, triangulation, progress, auto_seed, threads, max_simplices});
+        },
+        py::kw_only(), py::arg("function") = py::none(), py::arg("preset") = py::none(), py::arg("m") = py::none(),
+        py::arg("dim") = py::none(), py::arg("radius") = py::none(), py::arg("minor_radius") = py::none(),
+        py::arg("center") = py::none(), py::arg("domain") = py::none(), py::arg("seeds") = py::none(),
+        py::arg("auto_seed") = false, py::arg("box") = py::none(), py::arg("edge_length") = py::none(),
+        py::arg("scale") = py::none(), py::arg("matrix") = py::none(), py::arg("offset") = py::none(),
+        py::arg("triangulation") = "coxeter", py::arg("threads") = 0, py::arg("max_simplices") = 20'000'000,
+        py::arg("progress") = false, R"doc(
+Meshes a manifold: traces it through the ambient triangulation (thesis Ch. 4), builds its cell
+complex and its topology report. Keyword arguments only; the names follow `coxmesh trace`'s options.
+
+The manifold, one of:
+  function      the equations F(x) = 0, either
+                  a string "e1; e2; ..." in x1..xd (x, y, z, w when d <= 4), as for --function, or
+                  a callable f(X) -> Y: X an (n, d) float64 array of points, Y an (n, k) array
+                  ((n,) for one equation). It is called with many lattice vertices at once (a
+                  breadth-first level of the walk), each lattice vertex exactly once; vectorise
+                  it with numpy. A callable needs dim (or seeds, box, matrix) to tell d.
+  preset        a built-in manifold by name (default "torus"; see `coxmesh presets`): torus, sphere,
+                flat-torus, chair, iron, lemniscate, whitney-umbrella, moment-curve, so3, plane;
+                with its parameters m, dim, radius, minor_radius, center.
+  dim           the ambient dimension d (for presets that take it; for expressions when the
+                variables do not show it; for callables).
+  domain        keep the part where D(x) < 0: a string, a callable X -> (n,), or a list of them
+                (intersected).
+
+Where to start and where to stop:
+  seeds         points near the manifold (projected onto it); default F's own seed, or points
+                found automatically in the box.
+  auto_seed     also search seeds for every component inside the box.
+  box           (lo, hi): stop the walk at this box and search seeds in it (default for
+                functions: [-2, 2]^d; presets: unbounded, seeds searched around their extent).
+  max_simplices stop when this many simplices are traced (the result says complete=False).
+
+The ambient triangulation:
+  triangulation "coxeter" (Ã_d, default), "freudenthal", or a coxmesh.Triangulation.
+  edge_length   the longest edge of every d-simplex (default: the preset's, or 1/40 of the box).
+  scale         multiply the linear part by this instead.
+  matrix        a (d, d) matrix for the linear part (replaces triangulation and the default scale).
+  offset        the translation b (d numbers).
+
+  threads       worker threads (0: all hardware threads); the result is the same for every number.
+                Python callables run on one thread.
+  progress      True prints the traced count to stderr once a second; a callable f(traced) is
+                called with it every ~0.05 s at most.
+
+Returns a coxmesh.Mesh. Raises InputError/SeedError/EvaluationError (ValueErrors) with the
+library's messages; an exception raised by a callable propagates unchanged; Ctrl-C raises
+KeyboardInterrupt within ~0.1 s. The GIL is released except while a callable runs.
+
+    mesh = coxmesh.trace(preset="sphere", m=2, dim=4)
+    mesh = coxmesh.trace(function="x^2+y^2+z^2-1", edge_length=0.05)
+    mesh = coxmesh.trace(function=lambda X: (X**2).sum(1) - 1, dim=3, seeds=[[1, 0, 0]])
+)doc");
+}
+
+}  // namespace coxmesh::python
