@@ -1,4 +1,4 @@
-// Cost of functions typed as text (issue 4): muparser expressions (ExpressionFunction) against the
+// Cost of functions typed as text: muparser expressions (ExpressionFunction) against the
 // compiled C++ built-ins computing the same formulas.
 //   * ns per evaluation of F, on a pool of random points, for the sphere S² ⊂ R³, the torus in R³
 //     and S³ ⊂ R⁵ (two equations);

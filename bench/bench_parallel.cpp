@@ -1,4 +1,4 @@
-// Multi-core scaling of tracing and cell complex construction (issue 6). For every case: the
+// Multi-core scaling of tracing and cell complex construction. For every case: the
 // sequential walk (one oracle, the single-thread implementation) against the parallel one with
 // 1, 2, 4, … threads (one oracle per worker, sharing the vertex values), and the cell complex with
 // the same thread counts. Wall time, best and median of `runs` interleaved runs. Also checks that every run gives the same |S| and cell count.

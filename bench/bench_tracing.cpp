@@ -1,5 +1,5 @@
-// Manifold tracing and cell complex, side by side with GUDHI's Coxeter_triangulation module (issue 3,
-// spec §2, §3, §6.3). One run, one thread, for every case:
+// Manifold tracing and cell complex, side by side with GUDHI's Coxeter_triangulation module (thesis
+// §4.2, §4.3, §4.4). One run, one thread, for every case:
 //   * the same triangulation: GUDHI's Ã_d matrix × scale, the same random offset (fixed RNG seed),
 //     passed explicitly to coxmesh::Triangulation;
 //   * the same manifold (each library's own built-in functions, which compute the same formulas) and

@@ -1,4 +1,4 @@
-// Triangulation core, side by side with GUDHI's Coxeter_triangulation module (spec §1, §6.3):
+// Triangulation core, side by side with GUDHI's Coxeter_triangulation module (thesis Ch. 3, §4.4):
 //   * point location in Ã_d (general matrix: GUDHI's own matrix passed to coxmesh, so both locate in
 //     the same triangulation), on the same pre-generated random points;
 //   * cofacet enumeration (cofaces of dimension k+1) of the same random k-simplices.

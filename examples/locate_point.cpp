@@ -1,5 +1,5 @@
 // Locates a point in the Coxeter triangulation Ã_2 and prints its simplex, vertices and
-// barycentric coordinates (the worked example of spec §1.10, item 8), then its faces and cofaces.
+// barycentric coordinates (a worked example computed with GUDHI), then its faces and cofaces.
 #include <iostream>
 
 #include "coxmesh/lattice/cofaces.h"

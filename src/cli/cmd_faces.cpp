@@ -1,4 +1,4 @@
-// coxmesh faces / cofaces: faces and cofaces of a simplex given in text form (spec §1.4, §1.5).
+// coxmesh faces / cofaces: faces and cofaces of a simplex given in text form (thesis §3.5).
 #include <iostream>
 
 #include "commands.h"

@@ -1,4 +1,4 @@
-// coxmesh locate: the minimal simplex containing a point (spec §1.7).
+// coxmesh locate: the minimal simplex containing a point (thesis §3.4).
 #include <filesystem>
 #include <fstream>
 #include <iostream>

@@ -1,5 +1,5 @@
 // coxmesh quality: quality measures, Delaunay property and protection of the Coxeter triangulations of
-// every affine type (thesis Ch. 2; spec §5), as a table, JSON, CSV, Markdown or an SVG plot against d.
+// every affine type (thesis Ch. 2), as a table, JSON, CSV, Markdown or an SVG plot against d.
 #include <unistd.h>
 
 #include <algorithm>

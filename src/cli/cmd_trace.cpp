@@ -1,5 +1,5 @@
 // coxmesh trace: mesh a manifold given by a preset or by equations typed as text (thesis Ch. 4;
-// spec §2), report its topology and write it to a file.
+// thesis §4.2), report its topology and write it to a file.
 #include <unistd.h>
 
 #include <algorithm>

@@ -4,7 +4,7 @@ set -euo pipefail
 source "$(dirname "$0")/lib.sh"
 cd "$tmp"  # `coxmesh trace` writes NAME.vtu in the current directory
 
-# locate: spec §1.10 examples.
+# locate: worked examples computed with GUDHI.
 check "locate FK" "(3,-2,0) [{0},{2},{1},{3}]" "$("$bin" locate --triangulation freudenthal --point 3.5,-1.8,0.3 | cut -d' ' -f1-2)"
 json=$("$bin" locate --triangulation freudenthal --point 0.3,0.7 --json)
 check "locate json" '{"cartesian":[[0.0,0.0],[0.0,1.0],[1.0,1.0]],"dimension":2,"partition":[[1],[0],[2]],"vertex":[0,0]}' "$json"

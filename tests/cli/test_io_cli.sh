@@ -216,7 +216,7 @@ fails_with "unparsable expression shows the position" "at position 5" "$bin" tra
 fails_with "missing parenthesis" "marked:" "$bin" trace --function "sin(x+y" -o keep.vtu
 fails_with "unknown variable" "unknown variable 'foo'" "$bin" trace --function "x^2+foo" -o keep.vtu
 fails_with "too many equations" "fewer equations than the dimension" "$bin" trace --function "x; y; z" -o keep.vtu
-# ---- Any number of threads writes the same bytes (issue 6) ----
+# ---- Any number of threads writes the same bytes ----
 same_files() {  # same_files NAME EXT TRACE-ARGS...: files for 1, 2, 3 and 4 threads are identical
   local name=$1 ext=$2; shift 2
   for t in 1 2 3 4; do "$bin" trace "$@" --threads "$t" -q -o "threads$t.$ext"; done

@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # End-to-end tests of `coxmesh quality` ($COXMESH): JSON keys and values, CSV, Markdown, errors and
-# exit codes, and the SVG plot (spec §5; thesis Ch. 2).
+# exit codes, and the SVG plot (thesis Ch. 2).
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
 
-# JSON: one row per (type, d), every documented key, values of spec §5.3.
+# JSON: one row per (type, d), every documented key, values of thesis §2.4.
 json=$("$bin" quality --type A,C --dim 2..4 --json)
 check "json rows" "6" "$(grep -c '"type":' <<<"$json")"
 for key in type dimension longest_edge shortest_edge edge_ratio thickness thickness_normalized radius_ratio \

@@ -1,12 +1,12 @@
 // Cross-check of manifold tracing and of the cell complex against the reference implementation
-// (GUDHI's Coxeter_triangulation module, spec §2, §3, §6.2): on the same triangulation (GUDHI's Ã_d
+// (GUDHI's Coxeter_triangulation module, thesis §4.2, §4.3, §4.4): on the same triangulation (GUDHI's Ã_d
 // matrix, scaled, same offset, passed explicitly to coxmesh::Triangulation), the same manifold and
 // the same seed, both must trace the SAME SET of k-simplices (and of boundary (k+1)-simplices), at the
 // same points, and build cell complexes with the same cells (ambient simplices) in every dimension.
 //
 // GUDHI accepts λ in the closed [0,1] (floating point, column-pivoting QR); coxmesh decides with the
 // exact lexicographic rule. The two agree whenever no lattice vertex lies on M̂, which the three
-// configurations of spec §6.2 and random offsets (fixed RNG seed) guarantee in practice.
+// configurations of thesis §4.4 and random offsets (fixed RNG seed) guarantee in practice.
 //
 // GUDHI is only called here; its simplices are converted to coxmesh::Simplex and compared as sorted
 // vectors.
@@ -244,7 +244,7 @@ Eigen::VectorXd to_eigen(const std::vector<double>& v) { return Eigen::Map<const
 
 }  // namespace
 
-// ---- Spec §6.2: the three worked configurations ---------------------------------------------------------
+// ---- The three worked configurations of GUDHI (thesis §4.4) ---------------------------------------------------------
 
 TEST(GudhiTracing, SphereS2InR3_Spec) {
   const double r = 5.1111;
@@ -282,7 +282,7 @@ TEST(GudhiTracing, CircleInR2WithOffset_Spec) {
   const CoxmeshOutcome c = run_coxmesh(a, b, coxmesh::sphere(1, 2, 1.0), seed);
   expect_agreement(g, c, 1.0, "S^1 r=1 in R^2, offset (0.1,0.2)");
   EXPECT_EQ(list(c.topology.cells), "12/12");
-  // Spec §6.2: the 12 simplices and their points.
+  // GUDHI: the 12 simplices and their points.
   const std::vector<std::pair<std::string, std::vector<double>>> expected{
       {"(0,0) [{0},{1,2}]", {0.1, 0.811050152}},         {"(0,0) [{0,1},{2}]", {0.638465284, 0.510883077}},
       {"(0,0) [{1},{0,2}]", {0.829426398, -0.221134528}},  {"(0,-1) [{1},{0,2}]", {-0.596341343, 0.602032862}},
@@ -315,7 +315,7 @@ TEST_P(GudhiTracingSphere, RandomOffset) {
     const Eigen::MatrixXd a = gudhi_matrix(p.d, p.scale);
     std::vector<double> seed(p.d, 0.0);
     seed[0] = p.radius;
-    // GUDHI only tests the k-faces of the simplex located at the seed (spec §2.2, §8): at coarse
+    // GUDHI only tests the k-faces of the simplex located at the seed (thesis §4.2): at coarse
     // scales in high codimension it may trace nothing. Like the thesis' experiment programs, draw
     // another offset then (coxmesh, which searches around the seed, would trace either way).
     Eigen::VectorXd b;

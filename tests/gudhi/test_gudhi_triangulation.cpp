@@ -1,5 +1,5 @@
 // Cross-check of the triangulation core against the reference implementation (GUDHI's
-// Coxeter_triangulation module, spec §1 and §8): point location in FK and Ã_d, faces and cofaces of
+// Coxeter_triangulation module, thesis Ch. 3): point location in FK and Ã_d, faces and cofaces of
 // every dimension, and the face test, on random inputs (point location in d = 2..20, faces and
 // cofaces in d = 2..10, cofacets also in d = 20).
 //
@@ -209,7 +209,7 @@ TEST(GudhiCrossCheck, LocateScaledCoxeterWithOffset) {
   }
 }
 
-// Our closed-form Ã_d matrix and GUDHI's Eigen-computed one differ by a reflection only (spec §1.8):
+// Our closed-form Ã_d matrix and GUDHI's Eigen-computed one differ by a reflection only (thesis §3.1):
 // both satisfy Λᵀ·Λ = 2·(I − J/(d+1)).
 TEST(GudhiCrossCheck, CoxeterMatrixGramMatchesGudhi) {
   for (int d = kMinDim; d <= kMaxDim; ++d) {
@@ -274,7 +274,7 @@ TEST(GudhiCrossCheck, CofacesOfEveryDimension) {
   EXPECT_GT(compared, 100000u);
 }
 
-// The vertex star is a permutahedron: the coface counts of spec §1.5 for a vertex, against GUDHI.
+// The vertex star is a permutahedron: the coface counts of thesis §3.5 for a vertex, against GUDHI.
 TEST(GudhiCrossCheck, VertexStarCounts) {
   for (int d = kMinDim; d <= 6; ++d) {
     const std::vector<std::int32_t> y(d, 0);

@@ -1,4 +1,4 @@
-// Faces and cofaces: worked examples of spec §1.10, exact counts of §1.5, and a brute-force
+// Faces and cofaces: worked examples computed with GUDHI, exact counts (thesis §3.5), and a brute-force
 // enumeration of all simplices of a box from their vertex sets (independent of the encoding).
 #include <gtest/gtest.h>
 
@@ -133,7 +133,7 @@ TEST(Cofaces, GudhiUnitTestInDimension10) {
 }
 
 TEST(Cofaces, VertexStarIsAPermutahedron) {
-  // l-cofaces of a vertex = faces of dimension d − l of the permutahedron of order d+1 (spec §1.5).
+  // l-cofaces of a vertex = faces of dimension d − l of the permutahedron of order d+1 (thesis §3.5).
   const std::vector<std::vector<std::uint64_t>> expected = {
       {1, 2}, {1, 6, 6}, {1, 14, 36, 24}, {1, 30, 150, 240, 120}, {1, 62, 540, 1560, 1800, 720},
       {1, 126, 1806, 8400, 16800, 15120, 5040}};

@@ -1,5 +1,5 @@
-// Thesis §1.2 (Thm 1.2.15, Prop. 1.2.28–1.2.31) and Ch. 2; spec §5. Root systems, alcoves, tiling,
-// quality measures, Delaunay property and protection, against closed forms (spec §5.3), classical
+// Thesis §1.2 (Thm 1.2.15, Prop. 1.2.28–1.2.31) and Ch. 2. Root systems, alcoves, tiling,
+// quality measures, Delaunay property and protection, against closed forms (thesis §2.4), classical
 // facts (root counts, highest roots, |W|) and an independent exact computation in rational arithmetic.
 #include <gtest/gtest.h>
 
@@ -341,7 +341,7 @@ TEST(Alcove, VerticesAndFacetsMatchProposition1229) {
     EXPECT_GT(values.minCoeff(), 0) << n;
     EXPECT_LT(values.maxCoeff(), 1) << n;
   }
-  // C̃_d: 0, ½e_1, ½(e_1+e_2), … (spec §5.2), in the unchanged coordinates.
+  // C̃_d: 0, ½e_1, ½(e_1+e_2), … (thesis §1.2), in the unchanged coordinates.
   const Alcove c4 = fundamental_alcove(Family::C, 4);
   for (int i = 0; i <= 4; ++i)
     for (int k = 0; k < 4; ++k) EXPECT_DOUBLE_EQ(c4.vertices(i, k), k < i ? 0.5 : 0.0);
@@ -464,7 +464,7 @@ TEST(Measures, AtildeClosedFormsUpToDimension50) {
     expect_rel(m.thickness, d % 2 ? std::sqrt(2 / (D + 1)) : std::sqrt(2 * (D + 1) / (D * (D + 2))), 1e-12, n + " h/L");
     if (d % 2) expect_rel(relative_to_regular(m).thickness, 2 * std::sqrt(D) / (D + 1), 1e-12, n + " h/L rel");
     for (int i = 0; i <= d; ++i) EXPECT_NEAR(m.circumcentre_barycentric[i], 1.0 / (d + 1), 1e-12) << n;  // barycentre
-    // Protection (spec §5.3): δ = √((d²+2d+24)/(12(d+1))) − √((d²+2d)/(12(d+1))).
+    // Protection (thesis §2.4): δ = √((d²+2d+24)/(12(d+1))) − √((d²+2d)/(12(d+1))).
     const DelaunayResult del = delaunay_by_circumcentre(m);
     ASSERT_EQ(del.status, DelaunayStatus::yes) << n;
     const long double delta = std::sqrt((D * D + 2 * D + 24) / (12 * (D + 1))) - std::sqrt((D * D + 2 * D) / (12 * (D + 1)));
@@ -479,7 +479,7 @@ TEST(Measures, AtildeClosedFormsUpToDimension50) {
       EXPECT_LT(D * D * delta / std::sqrt(L2), 4 * std::sqrt(3.0)) << n;
     }
   }
-  // The values listed in spec §5.3.
+  // The values listed in thesis §2.4.
   const double listed[] = {0.577350, 0.342371, 0.239146, 0.169844, 0.129757, 0.100324, 0.080930, 0.065856, 0.055105};
   for (int d = 2; d <= 10; ++d)
     EXPECT_NEAR(*coxeter_quality(Family::A, d, 0).delaunay.protection, listed[d - 2], 6e-7) << d;

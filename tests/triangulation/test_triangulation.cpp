@@ -1,4 +1,4 @@
-// Triangulation: the Ã_d closed form (§1.8), point location examples (§1.10), barycentric
+// Triangulation: the Ã_d closed form (thesis §3.1), point location examples computed with GUDHI, barycentric
 // coordinates, vertex coordinates, longest edges, and input validation.
 #include <gtest/gtest.h>
 
@@ -15,7 +15,7 @@ namespace {
 Simplex locate(const Triangulation& t, std::vector<double> x) { return t.locate(x); }
 std::string loc(const Triangulation& t, std::vector<double> x) { return to_string(t.locate(x)); }
 
-// GUDHI's Eigen-computed Ã_d matrices (spec §1.8), which differ from the sine form by row signs.
+// GUDHI's Eigen-computed Ã_d matrices (thesis §3.1), which differ from the sine form by row signs.
 Eigen::MatrixXd gudhi_matrix(int d) {
   Eigen::MatrixXd m(d, d);
   if (d == 2) m << 0, 1.0000000000000002, 1.1547005383792517, -0.57735026918962584;
@@ -34,7 +34,7 @@ TEST(Coxeter, ClosedFormMatchesGudhiUpToRowSigns) {
     const bool same = c3.row(r).isApprox(g3.row(r), 1e-13), flipped = c3.row(r).isApprox(-g3.row(r), 1e-13);
     EXPECT_TRUE(same || flipped) << "row " << r;
   }
-  EXPECT_NEAR(c3(0, 0), -0.382683432365090, 1e-14);  // spec: sine-formula values
+  EXPECT_NEAR(c3(0, 0), -0.382683432365090, 1e-14);  // the sine formula's values
   EXPECT_NEAR(c3(1, 2), -0.707106781186548, 1e-14);
 }
 

@@ -1,4 +1,4 @@
-// Thesis §4.3; spec §2.4: the cell complex by coface generation, level by level.
+// Thesis §4.2: the cell complex by coface generation, level by level.
 #include "coxmesh/cell_complex/cell_complex.h"
 
 #include <algorithm>

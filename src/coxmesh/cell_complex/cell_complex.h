@@ -1,4 +1,4 @@
-// Thesis §4.3 (the cell complex of M̂); spec §2.4.
+// Thesis §4.2 (the cell complex of M̂).
 #pragma once
 
 #include <vector>
@@ -38,7 +38,7 @@ struct CellComplex {
   std::size_t bytes() const;  ///< memory held, for reports
 };
 
-/// Builds the cell complex level by level (spec §2.4): the cells of dimension j are the
+/// Builds the cell complex level by level (thesis §4.2): the cells of dimension j are the
 /// (k+j)-cofaces of the simplices of the cells of dimension j − 1; each coface found from a cell
 /// records that cell as a facet. Consumes the trace result (its indices become level 0).
 /// `threads` workers (0 = all hardware threads) run batches of cells through a pipeline: cofaces

@@ -1,4 +1,4 @@
-// Geometry of a cell complex for the writers (spec §2.4): the global vertex numbering, the
+// Geometry of a cell complex for the writers (thesis §4.2): the global vertex numbering, the
 // cyclically ordered vertex list of every 2-cell, and the faces of every 3-cell. Plain arrays with
 // 32-bit ids; nothing here depends on a file format.
 //

@@ -1,4 +1,4 @@
-// Thesis §3; spec §1.5: cofaces by splitting blocks, then re-canonicalising.
+// Thesis §3.5: cofaces by splitting blocks, then re-canonicalising.
 #include "coxmesh/lattice/cofaces.h"
 
 #include <bit>

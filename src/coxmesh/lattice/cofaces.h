@@ -1,4 +1,4 @@
-// Thesis §3 (cofaces of a permutahedral simplex); spec §1.5.
+// Thesis §3.5 (cofaces of a permutahedral simplex).
 #pragma once
 
 #include <array>
@@ -11,7 +11,7 @@
 
 namespace coxmesh {
 
-/// Enumerates the l-cofaces of a k-simplex τ (k ≤ l ≤ d), each exactly once (spec §1.5):
+/// Enumerates the l-cofaces of a k-simplex τ (k ≤ l ≤ d), each exactly once (thesis §3.5):
 /// every block ω_i is cut into c_i + 1 ordered sub-blocks with Σ c_i = l − k, then the result is
 /// rotated so that d is in the last block again (the sub-blocks after d's move to the front and the
 /// base vertex drops by their indicator). No allocation. The order is deterministic but otherwise
@@ -102,7 +102,7 @@ inline void CofaceEnumerator::gray_step() {
   xor_word(byte >> 2, std::uint32_t{label_toggle_} << 8 * (byte & 3));
 }
 
-/// Number of l-cofaces of τ (spec §1.5): Σ over cut vectors of Π_i a(n_i, c_i + 1), where
+/// Number of l-cofaces of τ (thesis §3.5): Σ over cut vectors of Π_i a(n_i, c_i + 1), where
 /// a(n, j) = j!·S(n, j) counts ordered partitions. Throws InputError only if the count, or a term
 /// it needs, exceeds 64 bits (e.g. the 21! maximal cofaces of a vertex in d = 20); cofacet counts
 /// are exact for every d ≤ kMaxDimension.

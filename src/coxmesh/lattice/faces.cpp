@@ -1,4 +1,4 @@
-// Thesis §3; spec §1.4 (faces) and §1.6 (face test).
+// Thesis §3.5 (faces and the face test).
 #include "coxmesh/lattice/faces.h"
 
 #include <string>

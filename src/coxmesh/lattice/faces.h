@@ -1,4 +1,4 @@
-// Thesis §3 (faces of a permutahedral simplex); spec §1.4 and §1.6.
+// Thesis §3.5 (faces of a permutahedral simplex).
 #pragma once
 
 #include <array>
@@ -7,7 +7,7 @@
 
 namespace coxmesh {
 
-/// The k-face of σ (dimension l) spanned by the vertices i_0 < … < i_k (spec §1.4): the base moves
+/// The k-face of σ (dimension l) spanned by the vertices i_0 < … < i_k (thesis §3.5): the base moves
 /// to v_{i_0}; consecutive blocks between chosen vertices merge; the blocks after i_k and before
 /// i_0 merge into the last block (which holds d, so the result is canonical). O(d).
 /// `indices` has k+1 entries; preconditions (checked by the caller): increasing and ≤ l.
@@ -44,7 +44,7 @@ class FaceEnumerator {
 /// Index j of the vertex v of σ (v = v_j), or −1 if v is not a vertex of σ. O(d).
 int vertex_index(const Simplex& sigma, const std::int32_t* v);
 
-/// True iff τ is a face of σ (every vertex of τ is a vertex of σ; spec §1.6). O(d·(dim τ + 1)).
+/// True iff τ is a face of σ (every vertex of τ is a vertex of σ, thesis §3.5). O(d·(dim τ + 1)).
 bool is_face_of(const Simplex& tau, const Simplex& sigma);
 
 }  // namespace coxmesh

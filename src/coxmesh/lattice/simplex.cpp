@@ -1,4 +1,4 @@
-// Thesis §3; spec §1.2: canonical form, order, packing, hashing and the text form of a simplex.
+// Thesis §3.3: canonical form, order, packing, hashing and the text form of a simplex.
 #include "coxmesh/lattice/simplex.h"
 
 #include <algorithm>

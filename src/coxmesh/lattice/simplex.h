@@ -1,4 +1,4 @@
-// Thesis §3 (permutahedral representation); spec §1.2. The one definition of the simplex encoding.
+// Thesis §3.3 (permutahedral representation). The one definition of the simplex encoding.
 //
 // A k-simplex of the Freudenthal–Kuhn triangulation of R^d is a pair (y, ω):
 //   * y ∈ Z^d, its minimal vertex;

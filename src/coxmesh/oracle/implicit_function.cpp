@@ -1,4 +1,4 @@
-// Thesis §4.2, §4.4 (the example manifolds); spec §3, §6.1.
+// Thesis §4.3 (manifolds given as zero sets), §4.4 (the example manifolds).
 #include "coxmesh/oracle/implicit_function.h"
 
 #include <Eigen/LU>

@@ -1,4 +1,4 @@
-// Thesis §4.2 (manifolds given as zero sets); spec §3. Implicit functions F: R^d → R^k whose zero
+// Thesis §4.3 (manifolds given as zero sets). Implicit functions F: R^d → R^k whose zero
 // set is the manifold, domain functions D: R^d → R (inside where D < 0), and the built-in catalogue.
 #pragma once
 

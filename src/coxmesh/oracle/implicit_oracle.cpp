@@ -146,7 +146,7 @@ std::string ImplicitOracle::not_finite_message(const std::int32_t* v, int i, dou
   return os.str();
 }
 
-// M(τ) of spec §3, column-major: column j = (1, F(v_j)); and D at the vertices when asked.
+// M(τ) of thesis §4.3, column-major: column j = (1, F(v_j)); and D at the vertices when asked.
 void ImplicitOracle::system_matrix(const Simplex& tau, double* m, double* domain_values) {
   const int n = k_ + 1;
   std::int32_t v[kMaxDimension];

@@ -1,4 +1,4 @@
-// Thesis §4.1 (the intersection oracle); spec §2.1, §3. The tracer talks to the manifold only
+// Thesis §4.2 (the intersection oracle), §4.3. The tracer talks to the manifold only
 // through this interface, so an implicit function, a point cloud, or anything else plugs in.
 #pragma once
 
@@ -28,7 +28,7 @@ class IntersectionOracle {
   /// Number of function evaluations so far (implicit oracles count one per lattice vertex).
   virtual std::uint64_t function_evaluations() const { return 0; }
 
-  /// Optional door-in/door-out guess (the pivoting step of PL continuation; spec §2.2). M̂ meets
+  /// Optional door-in/door-out guess (the pivoting step of PL continuation, thesis §4.2). M̂ meets
   /// each cofacet μ of a transverse k-simplex τ in a segment whose ends lie on exactly two facets of
   /// μ: τ and one other. After pivot_enter(τ) returned true, pivot_exit(v) guesses that other facet
   /// for μ = τ ∪ {v} (v: the lattice vertex of μ not in τ) and returns the index, in τ's vertex

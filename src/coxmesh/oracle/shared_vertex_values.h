@@ -1,5 +1,5 @@
 // Function values at lattice vertices, shared by the oracles of several threads, so that F is
-// evaluated once per lattice vertex however many workers trace (issue 6).
+// evaluated once per lattice vertex however many workers trace.
 #pragma once
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Thesis §1.2.4 (Def. 1.2.24, Prop. 1.2.29–1.2.31); spec §5.2, §5.4.
+// Thesis §1.2.4 (Def. 1.2.24, Prop. 1.2.29–1.2.31), §2.3, §2.5.
 #include "coxmesh/quality/alcove.h"
 
 #include <Eigen/LU>

@@ -1,5 +1,5 @@
 // Thesis §1.2.4 (affine Weyl group, Def. 1.2.24; alcoves, Prop. 1.2.29–1.2.31, Cor. 1.2.32);
-// spec §5.2. The fundamental alcove of every affine type and its images under the affine Weyl group.
+// thesis §1.2. The fundamental alcove of every affine type and its images under the affine Weyl group.
 //
 // The fundamental alcove of a root system R with simple roots s_1..s_d and highest root
 // s̃ = Σ c_i s_i is {x : ⟨x, s_i⟩ ≥ 0 for all i, ⟨x, s̃⟩ ≤ 1} (Prop. 1.2.29). Its vertices are

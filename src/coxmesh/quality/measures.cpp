@@ -1,4 +1,4 @@
-// Thesis Ch. 2, Def. 1.1.48; spec §5.1 (measures), §5.4 (Delaunay property and protection).
+// Thesis §2.1 (measures), Def. 1.1.48, §2.3 and §2.5 (Delaunay property and protection).
 #include "coxmesh/quality/measures.h"
 
 #include <Eigen/LU>

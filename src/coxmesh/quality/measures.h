@@ -1,7 +1,7 @@
-// Thesis Ch. 2 (quality of Coxeter triangulations), Def. 1.1.48 (Delaunay); spec §5.1, §5.3, §5.4.
+// Thesis Ch. 2 (quality of Coxeter triangulations: §2.1, §2.3–§2.5), Def. 1.1.48 (Delaunay).
 // Quality measures of a d-simplex, the Delaunay property and protection of a Coxeter triangulation.
 //
-// Conventions (spec §5.1): L longest edge, l shortest edge, h_i the height from v_i (distance to the
+// Conventions (thesis §2.1): L longest edge, l shortest edge, h_i the height from v_i (distance to the
 // hyperplane of the opposite facet), R circumradius, r inradius. thickness = h_min/L (thesis intro),
 // thickness_normalized = h_min/(d·L) (Boissonnat–Dyer–Ghosh), radius ratio r/R, fatness vol/L^d,
 // aspect ratio h_min/R. A Coxeter triangulation is monohedral, so its quality is that of its
@@ -64,7 +64,7 @@ struct DelaunayResult {
   std::optional<double> protection;  ///< δ/L; 0 when degenerate, none when not Delaunay
 };
 
-/// Spec §5.4 criterion for the Coxeter triangulation with fundamental simplex m: Delaunay iff the
+/// The criterion of thesis §2.3 for the Coxeter triangulation with fundamental simplex m: Delaunay iff the
 /// circumcentre lies in the closed simplex, non-degenerate iff in its interior (min barycentric
 /// coordinate > tol). The neighbour across facet j being the mirror image, its opposite vertex v_j'
 /// satisfies |c − v_j'|² = R² + 4·h_j²·λ_j(c); when the triangulation is Delaunay the vertex nearest
@@ -84,7 +84,7 @@ struct CoxeterQuality {
   int dimension = 0;
   SimplexMeasures measures;   ///< of the fundamental alcove
   RelativeMeasures relative;
-  DelaunayResult delaunay;    ///< by the criterion of spec §5.4
+  DelaunayResult delaunay;    ///< by the criterion of thesis §2.3, §2.5
   std::optional<DelaunayResult> delaunay_direct;  ///< on a generated neighbourhood, when computed
 };
 

@@ -1,4 +1,4 @@
-// Thesis §1.2.2, Thm 1.2.15 (simple roots), Def. 1.2.11–1.2.13, Prop. 1.2.28; spec §5.2.
+// Thesis §1.2.2, Thm 1.2.15 (simple roots), Def. 1.2.11–1.2.13, Prop. 1.2.28.
 #include "coxmesh/quality/root_system.h"
 
 #include <algorithm>

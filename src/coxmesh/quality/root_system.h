@@ -1,5 +1,5 @@
 // Thesis §1.2.2 (root systems, Def. 1.2.7–1.2.13, Thm 1.2.15 simple roots, Prop. 1.2.28 highest
-// root); spec §5.2. The irreducible crystallographic root systems A_d, B_d, C_d, D_d, E6–E8, F4, G2.
+// root), thesis §1.2. The irreducible crystallographic root systems A_d, B_d, C_d, D_d, E6–E8, F4, G2.
 //
 // Conventions, used by everything in quality/:
 //   * the simple roots are exactly those of Thm 1.2.15, in their own coordinates R^n (n = d+1 for A_d,

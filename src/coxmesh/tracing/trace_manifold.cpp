@@ -1,4 +1,4 @@
-// Thesis §4.3; spec §2.2 (tracing) and §2.3 (boundary). The one hot loop of coxmesh.
+// Thesis §4.2 (manifold tracing, with boundary). The one hot loop of coxmesh.
 #include "coxmesh/tracing/trace_manifold.h"
 
 #include <algorithm>
@@ -49,7 +49,7 @@ std::uint64_t cofacet_code(const std::int32_t* w, const std::uint32_t* tau_key, 
 }
 
 // The other transverse facet of a cofacet μ of τ ∈ S: M̂ ∩ μ is a segment between exactly two
-// transverse facets of μ, τ and this one (spec §2.2). The oracle's door-in/door-out guess is
+// transverse facets of μ, τ and this one (thesis §4.2). The oracle's door-in/door-out guess is
 // tested first; without a guess, or when it is wrong, every facet is. `test` classifies a facet.
 // μ is skipped (miss) when it is the cofacet τ was discovered through (`arrival`, a cofacet_code):
 // its other transverse facet is τ's discoverer, already in S.

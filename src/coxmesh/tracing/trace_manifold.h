@@ -1,4 +1,4 @@
-// Thesis §4.3 (manifold tracing), Algorithm of spec §2.2 and §2.3 (boundaries).
+// Thesis §4.2 (the manifold tracing algorithm, with boundary).
 #pragma once
 
 #include <functional>
@@ -31,7 +31,7 @@ struct TraceOptions {
 /// closed, so its topology is not reported. (A box bounds the walk as a domain: box_domain().)
 enum class TraceStatus { complete, max_simplices_reached };
 
-/// The output of tracing (spec §2.1): S = the k-simplices meeting M̂ inside the domain, each with
+/// The output of tracing (thesis §4.2): S = the k-simplices meeting M̂ inside the domain, each with
 /// its intersection point, and S_∂ = the (k+1)-simplices meeting M̂ ∩ ∂D̂, with theirs. Ids are
 /// dense and in breadth-first discovery order (deterministic).
 struct TraceResult {

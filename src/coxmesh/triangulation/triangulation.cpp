@@ -1,4 +1,4 @@
-// Thesis §3.1–3.3; spec §1.3 (vertex coordinates), §1.7 (point location), §1.8 (Ã_d).
+// Thesis §3.1 (FK and Ã_d), §3.3 (vertex coordinates), §3.4 (point location).
 #include "coxmesh/triangulation/triangulation.h"
 
 #include <Eigen/LU>
@@ -297,7 +297,7 @@ void rank_keys(const std::int32_t* key, int n, std::int32_t* rank) {
   }
 }
 
-// Point location in FK coordinates (spec §1.7): y = ⌊v⌋, then the indices ordered by decreasing
+// Point location in FK coordinates (thesis §3.4): y = ⌊v⌋, then the indices ordered by decreasing
 // fractional part, cut into blocks at strict drops. D > 0 fixes the dimension at compile time (small
 // d: fully unrolled), D = 0 takes it at run time. z holds the lattice coordinates, padded with
 // zeros to padded_rows(d) entries.

@@ -1,4 +1,4 @@
-// Thesis §3.1–3.3 (FK triangulation, point location, Coxeter Ã_d as a linear image); spec §1.7–§1.8.
+// Thesis §3.1 (FK triangulation; Coxeter Ã_d as a linear image of it), §3.4 (point location).
 #pragma once
 
 #include <Eigen/Core>
@@ -24,7 +24,7 @@ class Triangulation {
 
   /// FK itself (Λ = I, b = 0).
   static Triangulation freudenthal(int d);
-  /// Ã_d with unit heights, by the closed form of spec §1.8: Λ = diag(μ_q^{-1/2})·Qᵀ·L^{-1},
+  /// Ã_d with unit heights, by the closed form of thesis §3.1: Λ = diag(μ_q^{-1/2})·Qᵀ·L^{-1},
   /// Q_{jq} = √(2/(d+1))·sin(jqπ/(d+1)), μ_q = 1 − cos(qπ/(d+1)).
   static Triangulation coxeter(int d);
 
@@ -48,10 +48,10 @@ class Triangulation {
   /// Cartesian coordinates Λ·v + b of a lattice point. O(d²).
   void cartesian(const std::int32_t* v, double* x) const;
   /// Cartesian coordinates of all vertices of σ, (dim σ + 1) rows of d, incrementally (O(d²) in
-  /// total: each step adds the columns of one block, spec §1.3).
+  /// total: each step adds the columns of one block, thesis §3.3).
   void vertex_coordinates(const Simplex& sigma, double* out) const;
 
-  /// The minimal simplex containing x (spec §1.7). FK coordinates within 1e-9 of an integer are
+  /// The minimal simplex containing x (thesis §3.4). FK coordinates within 1e-9 of an integer are
   /// snapped to it and coordinates whose fractional parts differ by at most 1e-9 share a block,
   /// so points on lower-dimensional faces locate those faces. Throws InputError on a wrong size,
   /// NaN/Inf or a lattice coordinate beyond ±2^30. No allocation.
