@@ -62,3 +62,14 @@ TEST(Facets, ExtraVertexOfEveryCofacet) {
         }
       }
 }
+
+// The assertion tiers (errors.h): a facet of a vertex is a broken precondition, caught where debug
+// assertions are on (debug builds, and the paranoid sanitizer build of CI).
+TEST(Assertions, BrokenPreconditionsAbortWhereChecked) {
+#if !defined(NDEBUG) || defined(COXMESH_PARANOID)
+  const Simplex vertex = parse_simplex("(0,0) [{0,1,2}]");
+  EXPECT_DEATH(facet_without(vertex, 0), "assertion");
+#else
+  GTEST_SKIP() << "debug assertions are off in this build (NDEBUG)";
+#endif
+}

@@ -7,6 +7,8 @@ namespace coxmesh {
 
 Simplex face_from_indices(const Simplex& sigma, const int* indices, int k) {
   const int l = sigma.k, d = sigma.d;
+  COXMESH_DEBUG_ASSERT(k >= 0 && k <= l && indices[0] >= 0 && indices[k] <= l);
+  for (int h = 1; h <= k; ++h) COXMESH_PARANOID_ASSERT(indices[h - 1] < indices[h]);
   // New block of each old block b: blocks i_{h-1} ≤ b < i_h form block h−1; the rest wrap into k.
   std::array<std::uint8_t, kMaxDimension + 1> relabel;
   for (int b = 0; b <= l; ++b) relabel[b] = static_cast<std::uint8_t>(k);
@@ -25,6 +27,7 @@ Simplex facet_without(const Simplex& sigma, int j) {
   // Dropping v_j merges blocks j−1 and j; dropping v_0 moves the base to v_1 and block 0 into the
   // last block (which holds d, so the result stays canonical).
   const int l = sigma.k, d = sigma.d;
+  COXMESH_DEBUG_ASSERT(l >= 1 && j >= 0 && j <= l);
   Simplex f = sigma;
   f.k = static_cast<std::uint8_t>(l - 1);
   if (j == 0) {
@@ -38,6 +41,8 @@ Simplex facet_without(const Simplex& sigma, int j) {
 }
 
 int extra_vertex_index(const Simplex& tau, const Simplex& mu) {
+  COXMESH_DEBUG_ASSERT(mu.k == tau.k + 1 && mu.d == tau.d);
+  COXMESH_PARANOID_ASSERT(is_face_of(tau, mu));
   // Same base vertex: μ splits a block b of τ in two and its new vertex comes right after v_b, so
   // b is the smallest τ-block of an index whose block number changed. Otherwise the split put
   // the part without d in front and the new vertex is μ's base.

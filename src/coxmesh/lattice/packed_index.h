@@ -66,6 +66,8 @@ class PackedKeyIndex {
   }
   /// Inserts an absent key at the slot find() reported, with no insert in between; returns its id.
   std::uint32_t insert_at(std::size_t slot, const std::uint32_t* key, std::uint64_t hash) {
+    COXMESH_DEBUG_ASSERT(slot < slots_.size() && slots_[slot] == 0);
+    COXMESH_PARANOID_ASSERT(find(key, hash) == kAbsent);
     if (size_ >= kMaxEntries) throw InputError("more than 2^31 - 1 entries in one index");
     const std::uint32_t id = size_++;
     keys_.insert(keys_.end(), key, key + words_);
@@ -136,6 +138,7 @@ class PackedKeyIndex {
   }
   /// Writes key `id` of the last append_unindexed(n).
   void set_appended(std::uint32_t id, const std::uint32_t* key, std::uint64_t hash) {
+    COXMESH_DEBUG_ASSERT(id < size_ && size_ - id <= unindexed_.size());
     std::copy_n(key, words_, keys_.data() + static_cast<std::size_t>(id) * words_);
     unindexed_[unindexed_.size() - (size_ - id)] = (hash >> 32 << 32) | (id + 1);
   }

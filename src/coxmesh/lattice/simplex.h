@@ -25,15 +25,12 @@
 #include <type_traits>
 #include <vector>
 
+#include "coxmesh/errors.h"
+
 namespace coxmesh {
 
 /// Largest supported ambient dimension: d+1 block labels fit in one 32-bit mask.
 inline constexpr int kMaxDimension = 31;
-
-/// Thrown for every invalid input (dimensions, NaN, malformed text, overflow, singular matrices).
-struct InputError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 /// Throws InputError unless 1 ≤ d ≤ kMaxDimension.
 void check_dimension(int d);

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <span>
 
+#include "coxmesh/errors.h"
 #include "coxmesh/lattice/simplex.h"
 
 namespace coxmesh {
@@ -41,11 +42,6 @@ class IntersectionOracle {
   /// packed_words(d) words each), before any of their cofacets is tested. An oracle may use it to
   /// compute in one batch what the walk will ask for (the default does nothing).
   virtual void prefetch(std::span<const std::uint32_t> /*packed_simplices*/) {}
-};
-
-/// A function returned NaN or ±Inf at a point; the message names the point.
-struct EvaluationError : std::runtime_error {
-  using std::runtime_error::runtime_error;
 };
 
 }  // namespace coxmesh

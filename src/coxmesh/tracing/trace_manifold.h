@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "coxmesh/errors.h"
 #include "coxmesh/lattice/packed_index.h"
 #include "coxmesh/oracle/intersection_oracle.h"
 #include "coxmesh/triangulation/triangulation.h"
@@ -44,12 +45,6 @@ struct TraceResult {
   std::string message;                              ///< why tracing stopped early (empty when complete)
   std::uint64_t oracle_calls = 0, function_evaluations = 0;
   int manifold_dimension() const { return ambient_dimension - codimension; }
-};
-
-/// Thrown when a seed cannot start the tracing (no simplex near it meets M̂, or it lies outside
-/// the domain): never a silently empty result.
-struct SeedError : std::runtime_error {
-  using std::runtime_error::runtime_error;
 };
 
 /// Traces every component of M̂ that passes near a seed: locates each seed, finds the k-simplices
