@@ -1,12 +1,29 @@
 #!/usr/bin/env bash
 # Installs the Debian packages coxmesh needs, then configures and builds it (Release) in ./build.
-# Extra arguments go to cmake's configure step, e.g. -DCOXMESH_SANITIZE=ON.
+#   ./scripts/setup.sh           the library and the command-line tool only (what the first
+#                                command of the README runs)
+#   ./scripts/setup.sh --python  the same and the Python package (build/python)
+#   ./scripts/setup.sh --all     everything: also the tests, benchmarks and the Python package
+# Further arguments go to cmake's configure step (e.g. -DCOXMESH_SANITIZE=ON), except
+# "--target NAME", which builds that target only.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-packages=(g++ cmake make libeigen3-dev libcli11-dev nlohmann-json3-dev libmuparser-dev
-          libgtest-dev libgmock-dev libbenchmark-dev libgudhi-dev libboost-dev libphat-dev
-          python3-vtk9  # python3-vtk9: the VTU read-back test uses VTK's own reader
-          pybind11-dev python3-dev python3-numpy python3-pytest)  # the Python package and its tests
+mode=cli
+case "${1:-}" in --all) mode=all; shift ;; --python) mode=python; shift ;; esac
+
+packages=(g++ cmake make libeigen3-dev libcli11-dev nlohmann-json3-dev libmuparser-dev libboost-dev libphat-dev)
+python_packages=(pybind11-dev python3-dev python3-numpy python3-pytest)  # the Python package and its tests
+test_packages=(libgtest-dev libgmock-dev libbenchmark-dev libgudhi-dev
+               python3-vtk9)  # python3-vtk9: the VTU read-back test uses VTK's own reader
+configure=(-DCMAKE_BUILD_TYPE=Release) target=()
+case $mode in
+  cli) configure+=(-DCOXMESH_TESTS=OFF -DCOXMESH_BENCHMARKS=OFF -DCOXMESH_PYTHON=OFF); target=(--target coxmesh) ;;
+  python) packages+=("${python_packages[@]}")
+          configure+=(-DCOXMESH_TESTS=OFF -DCOXMESH_BENCHMARKS=OFF -DCOXMESH_PYTHON=ON); target=(--target coxmesh_python) ;;
+  all) packages+=("${python_packages[@]}" "${test_packages[@]}")
+       configure+=(-DCOXMESH_TESTS=ON -DCOXMESH_BENCHMARKS=ON -DCOXMESH_PYTHON=ON) ;;
+esac
+
 missing=()
 for p in "${packages[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
 if [ ${#missing[@]} -gt 0 ]; then
@@ -15,10 +32,8 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}"
 fi
 build=${COXMESH_BUILD_DIR:-build}
-# Arguments before an optional "--target NAME" go to the configure step.
-configure=() target=()
 while [ $# -gt 0 ]; do
   if [ "$1" = "--target" ]; then target=(--target "$2"); shift 2; else configure+=("$1"); shift; fi
 done
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release "${configure[@]}"
+cmake -S . -B "$build" "${configure[@]}"
 cmake --build "$build" -j "$(nproc)" "${target[@]}"
