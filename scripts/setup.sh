@@ -5,7 +5,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 packages=(g++ cmake make libeigen3-dev libcli11-dev nlohmann-json3-dev libmuparser-dev
           libgtest-dev libgmock-dev libbenchmark-dev libgudhi-dev libboost-dev libphat-dev
-          python3-vtk9)  # python3-vtk9: the VTU read-back test uses VTK's own reader
+          libnanoflann-dev libcgal-demo
+          python3-vtk9)  # python3-vtk9: the VTU read-back test uses VTK's own reader; libcgal-demo: real point clouds for the tests
 missing=()
 for p in "${packages[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
 if [ ${#missing[@]} -gt 0 ]; then

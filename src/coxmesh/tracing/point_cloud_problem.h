@@ -1,0 +1,71 @@
+// Thesis Ch. 4 (manifolds given by point clouds): an m-manifold known only through samples, meshed
+// by the same tracer as an implicit one. The samples define a function F: R^d → R^k, one value per
+// lattice vertex, and a tube domain around them; the exact tracer then makes the output a PL
+// manifold whatever the samples, and only the correctness of its topology depends on their density
+// and noise. This file chooses the defaults (scale from the sample spacing) and the seeds.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "coxmesh/oracle/point_cloud.h"
+#include "coxmesh/tracing/trace_manifold.h"
+
+namespace coxmesh {
+
+enum class PointCloudFunction { nearest, blended };
+
+struct PointCloudOptions {
+  double edge_length = 0;     ///< longest edge of the triangulation; 0: edge_factor × spacing
+  double edge_factor = 2.0;
+  double radius = 0;          ///< PCA neighbourhood radius; 0: radius_factor × spacing
+  double radius_factor = 5.0;
+  int min_neighbours = 0;     ///< fewer samples within the radius: use this many nearest (0: 4(m + 1))
+  double tube = 3.0;          ///< tube radius in edge lengths (the domain); 0: no tube
+  PointCloudFunction function = PointCloudFunction::blended;
+  double blend_width = 0;     ///< w of the blended function; 0: blend_factor × spacing
+  double blend_factor = 2.0;
+  int seeds_per_component = 8;
+  std::vector<double> normals;  ///< optional n × d normals given with the samples (codimension 1): fix the signs
+};
+
+/// What the construction found out about the samples (printed by the CLI).
+struct PointCloudDiagnostics {
+  std::size_t samples = 0;
+  int ambient_dimension = 0, manifold_dimension = 0;
+  double spacing = 0;          ///< median distance from a sample to its nearest other sample
+  double thickness = 0;        ///< median RMS distance of a neighbourhood from its tangent plane: noise and curvature (reported only)
+  double radius = 0, edge_length = 0, tube_radius = 0, blend_width = 0;
+  double mean_neighbours = 0;  ///< samples per PCA neighbourhood
+  std::uint32_t components = 0;  ///< connected components of the neighbour graph
+  std::size_t graph_edges = 0, compared_edges = 0, frustrated_edges = 0;
+  bool used_given_normals = false;
+  /// Frustrated edges are significant: the normal bundle looks non-orientable (e.g. RP² ⊂ R⁴), and
+  /// no single-valued function can have the sampled manifold as its zero set: the traced topology
+  /// cannot be trusted. `warning` then says so in one line (empty otherwise).
+  bool frames_inconsistent = false;
+  std::string warning;
+};
+
+/// Everything the tracer needs: F, the domain, seeds (samples spread over every component of the
+/// neighbour graph), a box around the samples and the edge length to triangulate with.
+struct PointCloudProblem {
+  std::shared_ptr<const SampleModel> model;
+  FunctionPtr function, domain;
+  std::vector<std::vector<double>> seeds;
+  Box box;
+  double edge_length = 0;
+  PointCloudDiagnostics diagnostics;
+};
+
+/// Builds the point-cloud problem for samples of an m-manifold in R^d (n × d row-major, distinct
+/// points, n ≥ m + 2). Throws InputError on bad sizes or parameters.
+///
+///   PointCloudProblem p = make_point_cloud_problem(points, 3, 2);
+///   Triangulation T = Triangulation::coxeter(3).with_longest_edge(p.edge_length);
+///   ImplicitOracle oracle(T, p.function, p.domain);
+///   TraceResult r = trace_manifold(T, oracle, p.seeds, {.box = p.box, .skip_unusable_seeds = true});
+PointCloudProblem make_point_cloud_problem(std::vector<double> samples, int d, int m, const PointCloudOptions& options = {});
+
+}  // namespace coxmesh
