@@ -1,9 +1,10 @@
-// coxmesh trace: mesh a manifold given by a preset or by equations typed as text (thesis Ch. 4;
-// spec §2), report its topology and write it to a file.
+// coxmesh trace: mesh a manifold given by a preset, by equations typed as text or by samples
+// (thesis Ch. 4; spec §2), report its topology and write it to a file.
 #include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 
@@ -17,6 +18,7 @@
 #include "coxmesh/oracle/implicit_oracle.h"
 #include "coxmesh/tracing/seeds.h"
 #include "coxmesh/util/parallel_for.h"
+#include "points.h"
 #include "presets.h"
 #include "report.h"
 
@@ -39,6 +41,8 @@ struct TraceCliOptions {
   std::string domain_center, cut;
   std::string output, format, project;
   std::vector<const CLI::Option*> preset_only;  // options that make no sense with --function
+  PointCloudCliOptions points;                   // --points FILE and its options (points.h)
+  const CLI::Option* m_option = nullptr;         // --m: also the manifold dimension of --points
 };
 
 using Clock = std::chrono::steady_clock;
@@ -107,10 +111,23 @@ void run(TraceCliOptions o) {
   if (from_text)
     for (const CLI::Option* opt : o.preset_only)
       if (opt->count()) throw InputError(opt->get_name() + " is a preset parameter; it does not apply to --function");
-  if (!from_text && !o.center.empty()) o.params.center = parse_point(o.center, "--center");
-  auto make_problem = [&o, from_text]() -> std::pair<FunctionPtr, FunctionPtr> {
+  // Samples: read and prepared once; their functions are thread-safe and shared by the workers.
+  std::optional<LoadedPointCloud> cloud;
+  if (!o.points.file.empty()) {
+    for (const CLI::Option* opt : o.preset_only)
+      if (opt->count() && opt != o.m_option) throw InputError(opt->get_name() + " is a preset parameter; it does not apply to --points");
+    cloud = load_point_cloud(o.points, o.m_option->count() ? std::optional<int>(o.params.m) : std::nullopt, o.params.dim,
+                             o.tri.edge_length);
+    if (cloud->problem.diagnostics.frames_inconsistent && !o.quiet)
+      std::cerr << "coxmesh: warning: " << cloud->problem.diagnostics.warning << "\n";
+  }
+  if (!from_text && !cloud && !o.center.empty()) o.params.center = parse_point(o.center, "--center");
+  auto make_problem = [&o, &cloud, from_text]() -> std::pair<FunctionPtr, FunctionPtr> {
     FunctionPtr f, domain;
-    if (from_text) {
+    if (cloud) {
+      f = cloud->problem.function;
+      domain = cloud->problem.domain;
+    } else if (from_text) {
       f = expression_function(o.function, o.params.dim);
     } else {
       const Preset preset = make_preset(o.preset, o.params);
@@ -136,7 +153,10 @@ void run(TraceCliOptions o) {
     return {f, domain};
   };
   auto [f, domain] = make_problem();
-  if (from_text) {
+  if (cloud) {
+    default_edge = cloud->problem.edge_length;
+    name = o.points.file;
+  } else if (from_text) {
     name = "\"" + o.function + "\"";
   } else {
     const Preset preset = make_preset(o.preset, o.params);
@@ -148,7 +168,8 @@ void run(TraceCliOptions o) {
 
   // The output file is checked before the (possibly long) trace: format and projection spec.
   std::string output = o.output;
-  if (output.empty() && !o.no_output && !o.json) output = (from_text ? std::string("manifold") : o.preset) + ".vtu";
+  if (output.empty() && !o.no_output && !o.json)
+    output = (cloud ? std::filesystem::path(o.points.file).stem().string() : from_text ? std::string("manifold") : o.preset) + ".vtu";
   if (o.no_output && !o.output.empty()) throw InputError("--no-output contradicts -o " + o.output);
   const bool write = !output.empty();
   const MeshFormat format = !write ? MeshFormat::vtu : o.format.empty() ? format_of_path(output) : parse_format(o.format);
@@ -169,8 +190,9 @@ void run(TraceCliOptions o) {
       if (!(box.lo[i] < box.hi[i])) throw InputError("--box: lo must be below hi in every coordinate");
     search_box = box;
   }
-  if (!o.box.empty() || from_text) options.box = search_box;  // equations: the default box bounds the walk
-  if (from_text) {  // default scale: 40 edges across the narrowest side of the box
+  if (cloud && o.box.empty()) search_box = cloud->problem.box;  // the samples' box, widened by the tube
+  if (!o.box.empty() || from_text || cloud) options.box = search_box;  // equations: the default box bounds the walk
+  if (from_text && !cloud) {  // default scale: 40 edges across the narrowest side of the box
     default_edge = search_box.hi[0] - search_box.lo[0];
     for (int i = 1; i < d; ++i) default_edge = std::min(default_edge, search_box.hi[i] - search_box.lo[i]);
     default_edge /= 40;
@@ -188,7 +210,11 @@ void run(TraceCliOptions o) {
   }
   if (seeds.empty() && !f->seed().empty()) seeds.push_back(f->seed());
   std::size_t automatic = 0;
-  if (o.auto_seed || seeds.empty()) {
+  if (cloud) {  // samples spread over every component of the neighbour graph
+    automatic = cloud->problem.seeds.size();
+    seeds.insert(seeds.end(), cloud->problem.seeds.begin(), cloud->problem.seeds.end());
+    options.skip_unusable_seeds = true;
+  } else if (o.auto_seed || seeds.empty()) {
     auto found = find_seeds(*f, domain.get(), search_box);
     automatic = found.size();
     if (seeds.empty() && found.empty()) {
@@ -244,7 +270,7 @@ void run(TraceCliOptions o) {
     if (progress) progress->phase("writing " + output);
     WriteOptions wo;
     wo.projection = o.project;
-    wo.native.source = from_text ? "function " + o.function : "preset " + o.preset;
+    wo.native.source = cloud ? "points " + o.points.file : from_text ? "function " + o.function : "preset " + o.preset;
     for (const std::string& text : o.domains) wo.native.source += "; domain " + text;
     if (o.domain_ball) wo.native.source += "; domain-ball " + std::to_string(*o.domain_ball);
     if (!o.cut.empty()) wo.native.source += "; cut " + o.cut;
@@ -262,7 +288,8 @@ void run(TraceCliOptions o) {
 
   if (o.json) {
     nlohmann::json j = topology_json(cc, topo);
-    if (from_text) j["function"] = o.function;
+    if (cloud) j["point_cloud"] = point_cloud_json(*cloud);
+    else if (from_text) j["function"] = o.function;
     else j["preset"] = o.preset;
     j["function_evaluations"] = evaluations;
     j["oracle_calls"] = oracle_calls;
@@ -280,8 +307,9 @@ void run(TraceCliOptions o) {
     std::cout << j.dump(2) << "\n";
   } else if (!o.quiet) {
     std::cout << name << ": " << cc.manifold_dimension << "-manifold in R^" << d << "\n";
+    if (cloud) print_point_cloud(std::cout, *cloud);
     print_topology(std::cout, cc, topo);
-    if (automatic) std::cout << "  seeds              " << automatic << " found automatically in the box\n";
+    if (automatic) std::cout << "  seeds              " << automatic << (cloud ? " samples" : " found automatically in the box") << "\n";
     std::cout << "  F evaluations      " << evaluations << " (" << oracle_calls << " oracle calls)\n"
               << "  time               trace " << trace_s << " s ("
               << static_cast<long long>(cc.interior[0].size() / std::max(trace_s, 1e-9)) << " simplices/s), cell complex "
@@ -305,16 +333,19 @@ void register_trace(CLI::App& app, int& status) {
   CLI::App* cmd = app.add_subcommand("trace", "mesh a manifold: trace it through the ambient triangulation, report its "
                                               "topology and write it (default: the torus, to torus.vtu)");
   auto* preset = cmd->add_option("--preset", o->preset, "built-in manifold (see `coxmesh presets`)")->capture_default_str();
-  cmd->add_option("--function", o->function,
+  auto* function = cmd->add_option("--function", o->function,
                   "the manifold as equations \"e1; e2; ...\" = 0 in x1..xd (x,y,z,w when d <= 4), e.g. "
                   "\"x^2+y^2+z^2-1\"")
       ->excludes(preset);
-  o->preset_only.push_back(cmd->add_option("--m", o->params.m, "intrinsic dimension (sphere, plane)"));
+  o->m_option = cmd->add_option("--m", o->params.m, "intrinsic dimension (sphere, plane; --points: default d-1)");
+  o->preset_only.push_back(o->m_option);
   cmd->add_option("--dim", o->params.dim, "ambient dimension d (sphere, moment-curve, plane; --function when the "
                                           "variables do not show it)");
   o->preset_only.push_back(cmd->add_option("--radius", o->params.radius, "radius parameter of the preset"));
   o->preset_only.push_back(cmd->add_option("--minor-radius", o->params.minor_radius, "second radius (torus, flat-torus)"));
   o->preset_only.push_back(cmd->add_option("--center", o->center, "centre c1,...,cd (sphere, plane's domain)"));
+  o->points.add_to(*cmd);
+  o->points.option->excludes(preset)->excludes(function);
   o->tri.add_to(*cmd);
   cmd->add_option("--seed", o->seeds, "a point near the manifold (projected onto it); repeat for more")->take_all();
   cmd->add_flag("--auto-seed", o->auto_seed,
