@@ -1,0 +1,208 @@
+// Point clouds (thesis Ch. 4): samples of known manifolds, clean and noisy, traced through the
+// point-cloud function and tube; the Z/2 Betti numbers and the manifold check must come out right,
+// a non-orientable RP² ⊂ R⁴ must be flagged, and real samples nobody here made (CGAL's data) must
+// give their known topology with the default parameters.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+#include "coxmesh/cell_complex/cell_complex.h"
+#include "coxmesh/cell_complex/topology.h"
+#include "coxmesh/io/point_reader.h"
+#include "coxmesh/oracle/implicit_oracle.h"
+#include "coxmesh/tracing/point_cloud_problem.h"
+#include "point_samples.h"
+
+using namespace coxmesh;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Outcome {
+  PointCloudDiagnostics diagnostics;
+  TopologyReport topology;
+  std::size_t simplices = 0;
+  TraceStatus status = TraceStatus::complete;
+};
+
+Outcome mesh(std::vector<double> points, int d, int m, const PointCloudOptions& options = {}, int threads = 1) {
+  PointCloudProblem p = make_point_cloud_problem(std::move(points), d, m, options);
+  const Triangulation t = Triangulation::coxeter(d).with_longest_edge(p.edge_length);
+  TraceOptions to;
+  to.box = p.box;
+  to.skip_unusable_seeds = true;
+  to.threads = threads;
+  auto shared = threads > 1 ? ImplicitOracle::make_shared_values(t, p.function, p.domain) : nullptr;
+  TraceResult r = trace_manifold(t, [&] { return std::make_unique<ImplicitOracle>(t, p.function, p.domain, shared); },
+                                 p.seeds, to);
+  Outcome out;
+  out.status = r.status;
+  out.simplices = r.simplices.size();
+  out.diagnostics = p.diagnostics;
+  out.topology = analyze_topology(build_cell_complex(std::move(r)));
+  return out;
+}
+
+struct Case {
+  const char* name;
+  std::size_t n;
+  std::vector<std::size_t> betti;
+};
+
+class Synthetic : public ::testing::TestWithParam<std::tuple<Case, double, PointCloudFunction>> {};
+
+TEST_P(Synthetic, RightTopology) {
+  const auto& [c, noise, function] = GetParam();
+  const test::Samples s = test::sample_manifold(c.name, c.n, noise);
+  PointCloudOptions options;
+  options.function = function;
+  const Outcome o = mesh(s.points, s.d, s.m, options);
+  EXPECT_EQ(o.status, TraceStatus::complete);
+  EXPECT_TRUE(o.topology.is_manifold) << o.topology.manifold_problem;
+  EXPECT_EQ(o.topology.betti, c.betti);
+  EXPECT_FALSE(o.diagnostics.frames_inconsistent) << o.diagnostics.warning;
+  EXPECT_EQ(o.diagnostics.frustrated_edges, 0u);
+  const bool with_boundary = std::string(c.name) == "patch";
+  const bool has_boundary = !o.topology.boundary_cells.empty() && o.topology.boundary_cells[0] > 0;
+  EXPECT_EQ(has_boundary, with_boundary);
+}
+
+// Noise 0.01 in every coordinate: about 1/4 of the sample spacing (1/7 for S³).
+INSTANTIATE_TEST_SUITE_P(
+    PointClouds, Synthetic,
+    ::testing::Combine(::testing::Values(Case{"sphere", 2000, {1, 0, 1}}, Case{"torus", 2000, {1, 2, 1}},
+                                         Case{"flat-torus", 2000, {1, 2, 1}}, Case{"s3", 2000, {1, 0, 0, 1}},
+                                         Case{"two-spheres", 2000, {2, 0, 2}}, Case{"patch", 2000, {1, 0, 0}}),
+                       ::testing::Values(0.0, 0.01), ::testing::Values(PointCloudFunction::blended)),
+    [](const auto& info) {
+      std::string name = std::get<0>(info.param).name;
+      for (char& ch : name)
+        if (ch == '-') ch = '_';
+      return name + (std::get<1>(info.param) > 0 ? "_noisy" : "_clean");
+    });
+
+// The nearest-frame function on a few of them, and the denser noisy torus where both must hold.
+INSTANTIATE_TEST_SUITE_P(
+    Nearest, Synthetic,
+    ::testing::Combine(::testing::Values(Case{"sphere", 2000, {1, 0, 1}}, Case{"torus", 4000, {1, 2, 1}},
+                                         Case{"flat-torus", 2000, {1, 2, 1}}),
+                       ::testing::Values(0.0, 0.01), ::testing::Values(PointCloudFunction::nearest)),
+    [](const auto& info) {
+      std::string name = std::get<0>(info.param).name;
+      for (char& ch : name)
+        if (ch == '-') ch = '_';
+      return name + (std::get<1>(info.param) > 0 ? "_noisy" : "_clean");
+    });
+
+TEST(PointCloud, ProjectivePlaneIsFlagged) {
+  // RP² ⊂ R⁴ is not orientable: no single-valued function R⁴ → R² has it as its zero set (the
+  // zero set of such a function is orientable). The frames must say so, clean or noisy.
+  for (double noise : {0.0, 0.005}) {
+    const test::Samples s = test::sample_manifold("rp2", 3000, noise);
+    const Outcome o = mesh(s.points, s.d, s.m);
+    EXPECT_TRUE(o.diagnostics.frames_inconsistent) << noise;
+    EXPECT_GT(o.diagnostics.frustrated_edges, o.diagnostics.compared_edges / 100);
+    EXPECT_NE(o.diagnostics.warning.find("cannot be trusted"), std::string::npos);
+    EXPECT_NE(o.diagnostics.warning.find(std::to_string(o.diagnostics.frustrated_edges)), std::string::npos);
+    EXPECT_TRUE(o.topology.is_manifold);  // still a PL manifold: only its topology is wrong
+    EXPECT_NE(o.topology.betti, (std::vector<std::size_t>{1, 1, 1}));  // the Z/2 Betti numbers of RP²
+  }
+}
+
+TEST(PointCloud, ThreadsGiveTheSameResult) {
+  // The functions are evaluated concurrently by the workers: same simplices, same topology.
+  const test::Samples s = test::sample_manifold("torus", 3000, 0.01);
+  const Outcome one = mesh(s.points, s.d, s.m, {}, 1), two = mesh(s.points, s.d, s.m, {}, 2);
+  EXPECT_EQ(one.simplices, two.simplices);
+  EXPECT_EQ(one.topology.cells, two.topology.cells);
+  EXPECT_EQ(two.topology.betti, (std::vector<std::size_t>{1, 2, 1}));
+}
+
+TEST(PointCloud, DefaultsFollowTheSpacing) {
+  const test::Samples s = test::sample_manifold("sphere", 2000);
+  PointCloudProblem p = make_point_cloud_problem(s.points, 3, 2);
+  const PointCloudDiagnostics& g = p.diagnostics;
+  EXPECT_GT(g.spacing, 0.02);  // 2000 random points on the unit sphere: about 0.037
+  EXPECT_LT(g.spacing, 0.06);
+  EXPECT_DOUBLE_EQ(g.edge_length, 2 * g.spacing);
+  EXPECT_DOUBLE_EQ(g.radius, 5 * g.spacing);
+  EXPECT_DOUBLE_EQ(g.tube_radius, 3 * g.edge_length);
+  EXPECT_EQ(g.components, 1u);
+  EXPECT_FALSE(p.seeds.empty());
+  // F vanishes near the samples and changes sign across the sphere.
+  double in[3] = {0.9, 0, 0}, out[3] = {1.1, 0, 0}, vin, vout;
+  p.function->evaluate(in, &vin);
+  p.function->evaluate(out, &vout);
+  EXPECT_LT(vin * vout, 0);
+  double far[3] = {5, 5, 5}, dv;
+  p.domain->evaluate(far, &dv);
+  EXPECT_GT(dv, 0);  // outside the tube
+  EXPECT_EQ(make_point_cloud_problem(test::sample_manifold("two-spheres", 2000).points, 3, 2).diagnostics.components, 2u);
+}
+
+TEST(PointCloud, GivenNormalsOrient) {
+  test::Samples s = test::sample_manifold("sphere", 2000);
+  PointCloudOptions options;
+  options.normals = s.points;  // the outward normal of the unit sphere is the point itself
+  const Outcome o = mesh(s.points, 3, 2, options);
+  EXPECT_TRUE(o.diagnostics.used_given_normals);
+  EXPECT_EQ(o.topology.betti, (std::vector<std::size_t>{1, 0, 1}));
+}
+
+TEST(PointCloud, BadInput) {
+  const std::vector<double> three = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  EXPECT_THROW(make_point_cloud_problem(three, 3, 2), InputError);  // n < m + 2
+  EXPECT_THROW(make_point_cloud_problem(test::sample_manifold("sphere", 100).points, 3, 3), InputError);  // m = d
+  EXPECT_THROW(make_point_cloud_problem(test::sample_manifold("sphere", 100).points, 3, 0), InputError);
+  std::vector<double> nan = test::sample_manifold("sphere", 100).points;
+  nan[5] = std::nan("");
+  EXPECT_THROW(make_point_cloud_problem(nan, 3, 2), InputError);
+  PointCloudOptions bad;
+  bad.edge_length = -1;
+  EXPECT_THROW(make_point_cloud_problem(test::sample_manifold("sphere", 100).points, 3, 2, bad), InputError);
+  const std::vector<double> same(30, 1.0);  // ten copies of one point
+  EXPECT_THROW(make_point_cloud_problem(same, 3, 2), InputError);
+}
+
+// ---- Real samples: CGAL's data set (Debian libcgal-demo), extracted at test time ---------------
+
+fs::path cgal_data() {
+  const char* env = std::getenv("COXMESH_CGAL_DATA");
+  const fs::path archive = env ? env : "/usr/share/doc/libcgal-dev/data.tar.gz";
+  if (!fs::exists(archive)) return {};
+  const fs::path dir = fs::current_path() / "cgal_data";
+  if (fs::exists(dir / "data/points_3/kitten.xyz")) return dir / "data";
+  // Extract to a private directory, then rename: tests running in parallel never see half a file.
+  const fs::path tmp = fs::current_path() / ("cgal_data.tmp." + std::to_string(::getpid()));
+  fs::create_directories(tmp);
+  const std::string cmd = "tar -xzf '" + archive.string() + "' -C '" + tmp.string() +
+                          "' data/meshes/bunny00.off data/meshes/knot1.off data/points_3/kitten.xyz";
+  if (std::system(cmd.c_str()) != 0) {
+    fs::remove_all(tmp);
+    return {};
+  }
+  std::error_code ec;
+  fs::rename(tmp, dir, ec);
+  if (ec) fs::remove_all(tmp);  // another test got there first
+  return dir / "data";
+}
+
+void expect_topology(const std::string& file, std::vector<std::size_t> betti) {
+  const fs::path data = cgal_data();
+  if (data.empty()) GTEST_SKIP() << "CGAL's sample data (Debian package libcgal-demo) is not installed";
+  const PointSet set = read_points((data / file).string());
+  const Outcome o = mesh(set.points, 3, 2);
+  EXPECT_TRUE(o.topology.is_manifold) << o.topology.manifold_problem;
+  EXPECT_EQ(o.topology.betti, betti) << file;
+  EXPECT_FALSE(o.diagnostics.frames_inconsistent) << o.diagnostics.warning;
+  EXPECT_TRUE(o.topology.boundary_cells.empty() || o.topology.boundary_cells[0] == 0);
+}
+
+TEST(RealSamples, BunnyIsASphere) { expect_topology("meshes/bunny00.off", {1, 0, 1}); }
+TEST(RealSamples, KnotIsATorus) { expect_topology("meshes/knot1.off", {1, 2, 1}); }
+// The kitten's tail meets its back: a handle (genus 1).
+TEST(RealSamples, KittenHasOneHandle) { expect_topology("points_3/kitten.xyz", {1, 2, 1}); }
+
+}  // namespace
