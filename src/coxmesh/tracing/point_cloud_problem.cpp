@@ -67,7 +67,8 @@ PointCloudProblem make_point_cloud_problem(std::vector<double> samples, int d, i
   positive_or_zero(options.radius, "the neighbourhood radius");
   positive_or_zero(options.tube, "the tube radius");
   positive_or_zero(options.blend_width, "the blending width");
-  if (!(options.edge_factor > 0) || !(options.radius_factor > 0) || !(options.blend_factor > 0)) throw InputError("the scale factors must be positive");
+  if (!(options.edge_factor >= 0) || !(options.radius_factor > 0) || !(options.blend_factor > 0))
+    throw InputError("the scale factors must be positive");
 
   PointCloudProblem p;
   auto model = std::make_shared<SampleModel>();
@@ -97,7 +98,8 @@ PointCloudProblem make_point_cloud_problem(std::vector<double> samples, int d, i
   std::vector<double> thickness = fr.thickness;
   std::nth_element(thickness.begin(), thickness.begin() + n / 2, thickness.end());
   diag.thickness = thickness[n / 2];
-  diag.edge_length = options.edge_length > 0 ? options.edge_length : options.edge_factor * diag.spacing;
+  const double edge_factor = options.edge_factor > 0 ? options.edge_factor : m <= 2 ? 2.0 : 2.0 * (m - 1);
+  diag.edge_length = options.edge_length > 0 ? options.edge_length : edge_factor * diag.spacing;
   // On orientable manifolds the count is 0 but for a few edges at sharp features or noise; on RP²
   // a few per cent of all edges.
   diag.frames_inconsistent = fr.frustrated_edges > std::max<std::size_t>(8, fr.compared_edges / 500);

@@ -18,7 +18,10 @@ enum class PointCloudFunction { nearest, blended };
 
 struct PointCloudOptions {
   double edge_length = 0;     ///< longest edge of the triangulation; 0: edge_factor × spacing
-  double edge_factor = 2.0;
+  /// 0: 2 for curves and surfaces, 2(m − 1) above (the cell complex of an m-manifold grows like
+  /// (size/h)^m with a constant growing fast with m: S³ from 50,000 samples takes 0.3 GB at 4
+  /// spacings, 1.9 GB at 2, with the same topology).
+  double edge_factor = 0;
   double radius = 0;          ///< PCA neighbourhood radius; 0: radius_factor × spacing
   double radius_factor = 5.0;
   int min_neighbours = 0;     ///< fewer samples within the radius: use this many nearest (0: 4(m + 1))
