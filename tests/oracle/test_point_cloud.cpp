@@ -51,6 +51,8 @@ struct Case {
   std::vector<std::size_t> betti;
 };
 
+void PrintTo(const Case& c, std::ostream* os) { *os << c.name << " (" << c.n << " samples)"; }
+
 class Synthetic : public ::testing::TestWithParam<std::tuple<Case, double, PointCloudFunction>> {};
 
 TEST_P(Synthetic, RightTopology) {
@@ -173,12 +175,12 @@ fs::path cgal_data() {
   const fs::path archive = env ? env : "/usr/share/doc/libcgal-dev/data.tar.gz";
   if (!fs::exists(archive)) return {};
   const fs::path dir = fs::current_path() / "cgal_data";
-  if (fs::exists(dir / "data/points_3/kitten.xyz")) return dir / "data";
+  if (fs::exists(dir / "data/points_3/sphere_20k.xyz")) return dir / "data";
   // Extract to a private directory, then rename: tests running in parallel never see half a file.
   const fs::path tmp = fs::current_path() / ("cgal_data.tmp." + std::to_string(::getpid()));
   fs::create_directories(tmp);
   const std::string cmd = "tar -xzf '" + archive.string() + "' -C '" + tmp.string() +
-                          "' data/meshes/bunny00.off data/meshes/knot1.off data/points_3/kitten.xyz";
+                          "' data/meshes/bunny00.off data/meshes/knot1.off data/points_3/kitten.xyz data/points_3/sphere_20k.xyz";
   if (std::system(cmd.c_str()) != 0) {
     fs::remove_all(tmp);
     return {};
@@ -204,5 +206,7 @@ TEST(RealSamples, BunnyIsASphere) { expect_topology("meshes/bunny00.off", {1, 0,
 TEST(RealSamples, KnotIsATorus) { expect_topology("meshes/knot1.off", {1, 2, 1}); }
 // The kitten's tail meets its back: a handle (genus 1).
 TEST(RealSamples, KittenHasOneHandle) { expect_topology("points_3/kitten.xyz", {1, 2, 1}); }
+// A noisy sphere: the samples lie within ±0.15 of the unit sphere, noise 1.3 times their spacing.
+TEST(RealSamples, NoisySphere) { expect_topology("points_3/sphere_20k.xyz", {1, 0, 1}); }
 
 }  // namespace

@@ -115,7 +115,8 @@ PointCloudProblem make_point_cloud_problem(std::vector<double> samples, int d, i
 
   p.model = model;
   p.edge_length = diag.edge_length;
-  diag.blend_width = options.blend_width > 0 ? options.blend_width : options.blend_factor * diag.spacing;
+  diag.blend_width =
+      options.blend_width > 0 ? options.blend_width : options.blend_factor * std::max(diag.spacing, diag.thickness);
   p.function = options.function == PointCloudFunction::nearest ? nearest_frame_function(model)
                                                                 : blended_frame_function(model, diag.blend_width);
   if (options.function == PointCloudFunction::nearest) diag.blend_width = 0;

@@ -27,7 +27,9 @@ struct PointCloudOptions {
   int min_neighbours = 0;     ///< fewer samples within the radius: use this many nearest (0: 4(m + 1))
   double tube = 3.0;          ///< tube radius in edge lengths (the domain); 0: no tube
   PointCloudFunction function = PointCloudFunction::blended;
-  double blend_width = 0;     ///< w of the blended function; 0: blend_factor × spacing
+  /// w of the blended function; 0: blend_factor × max(spacing, thickness), so that it averages
+  /// over the noise when the samples are noisier than they are dense.
+  double blend_width = 0;
   double blend_factor = 2.0;
   int seeds_per_component = 8;
   std::vector<double> normals;  ///< optional n × d normals given with the samples (codimension 1): fix the signs
@@ -38,7 +40,7 @@ struct PointCloudDiagnostics {
   std::size_t samples = 0;
   int ambient_dimension = 0, manifold_dimension = 0;
   double spacing = 0;          ///< median distance from a sample to its nearest other sample
-  double thickness = 0;        ///< median RMS distance of a neighbourhood from its tangent plane: noise and curvature (reported only)
+  double thickness = 0;        ///< median RMS distance of a neighbourhood from its tangent plane: noise (and curvature)
   double radius = 0, edge_length = 0, tube_radius = 0, blend_width = 0;
   double mean_neighbours = 0;  ///< samples per PCA neighbourhood
   std::uint32_t components = 0;  ///< connected components of the neighbour graph
