@@ -41,10 +41,7 @@ std::optional<double> to_number(std::string_view token) {
   if (token.size() > 1 && token[0] == '+' && token[1] != '-') token.remove_prefix(1);
   double v = 0;
   const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
-  if (ec != std::errc() || end != token.data() + token.size()) {
-    if (ec == std::errc::result_out_of_range) return std::nullopt;
-    return std::nullopt;
-  }
+  if (ec != std::errc() || end != token.data() + token.size()) return std::nullopt;
   return v;
 }
 
@@ -163,15 +160,19 @@ PointSet read_off(const std::string& path, std::string_view text) {
   if (!next_tokens()) fail(path, "empty file: expected an OFF header");
   std::string_view key = tokens[0];
   if (key.size() < 3 || key.substr(key.size() - 3) != "OFF") fail(path, "line 1: expected OFF, NOFF, COFF or nOFF, found '" + std::string(key) + "'");
+  // Prefixes in their fixed order: ST (texture coordinates) and C (colour) only add numbers after
+  // the coordinates, which are ignored; N adds a normal; n announces the dimension.
   std::string_view prefix = key.substr(0, key.size() - 3);
-  bool texture = false, color = false, normal = false, given_dim = false;
-  if (prefix.starts_with("ST")) texture = true, prefix.remove_prefix(2);
-  if (prefix.starts_with("C")) color = true, prefix.remove_prefix(1);
-  if (prefix.starts_with("N")) normal = true, prefix.remove_prefix(1);
-  if (prefix.starts_with("n")) given_dim = true, prefix.remove_prefix(1);
+  auto take_prefix = [&prefix](std::string_view p) {
+    if (!prefix.starts_with(p)) return false;
+    prefix.remove_prefix(p.size());
+    return true;
+  };
+  take_prefix("ST");
+  take_prefix("C");
+  const bool normal = take_prefix("N");
+  const bool given_dim = take_prefix("n");
   if (!prefix.empty()) fail(path, "line 1: unsupported OFF variant '" + std::string(key) + "'");
-  (void)texture;
-  (void)color;  // extra numbers at the end of a vertex line are ignored
   std::vector<std::string_view> rest(tokens.begin() + 1, tokens.end());
   auto take = [&](const char* what) -> long long {
     while (rest.empty()) {
