@@ -100,16 +100,19 @@ PointCloudProblem make_point_cloud_problem(std::vector<double> samples, int d, i
   diag.thickness = thickness[n / 2];
   const double edge_factor = options.edge_factor > 0 ? options.edge_factor : m <= 2 ? 2.0 : 2.0 * (m - 1);
   diag.edge_length = options.edge_length > 0 ? options.edge_length : edge_factor * diag.spacing;
-  // On orientable manifolds the count is 0 but for a few edges at sharp features or noise; on RP²
-  // a few per cent of all edges.
-  diag.frames_inconsistent = fr.frustrated_edges > std::max<std::size_t>(8, fr.compared_edges / 500);
+  // Orientable manifolds give no frustrated edges but a few isolated ones at sharp features or in
+  // noise; a non-orientable one gives a seam of them across the manifold, whose edge count grows
+  // like n^((m-1)/m), at least √n for m ≥ 2 (RP² ⊂ R⁴: 5-6 √E from 2,000 to 50,000 samples).
+  diag.frames_inconsistent =
+      fr.frustrated_edges > std::max(8.0, std::sqrt(static_cast<double>(fr.compared_edges)));
   if (diag.frames_inconsistent) {
     std::ostringstream w;
     w << fr.frustrated_edges << " of " << fr.compared_edges << " neighbour-graph edges ("
       << percent(static_cast<double>(fr.frustrated_edges) / std::max<std::size_t>(fr.compared_edges, 1))
       << ") join samples whose normal " << (fr.k == 1 ? "directions" : "frames")
-      << " cannot be made consistent: the manifold looks non-orientable (like RP^2 or the Klein bottle in R^4), "
-         "which no function R^d -> R^k can represent; the traced topology cannot be trusted";
+      << " cannot be made consistent: the manifold looks non-orientable (like RP^2 or the Klein bottle in R^4, "
+         "which no function R^d -> R^k can represent), or the samples are too sparse or noisy for their normals; "
+         "the traced topology cannot be trusted";
     diag.warning = w.str();
   }
 

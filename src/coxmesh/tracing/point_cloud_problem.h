@@ -46,8 +46,9 @@ struct PointCloudDiagnostics {
   std::uint32_t components = 0;  ///< connected components of the neighbour graph
   std::size_t graph_edges = 0, compared_edges = 0, frustrated_edges = 0;
   bool used_given_normals = false;
-  /// Frustrated edges are significant: the normal bundle looks non-orientable (e.g. RP² ⊂ R⁴), and
-  /// no single-valued function can have the sampled manifold as its zero set: the traced topology
+  /// Frustrated edges are significant (more than 8 and more than √compared_edges): the normal
+  /// bundle looks non-orientable (e.g. RP² ⊂ R⁴), and no single-valued function can have the
+  /// sampled manifold as its zero set; or the normals are noise. Either way the traced topology
   /// cannot be trusted. `warning` then says so in one line (empty otherwise).
   bool frames_inconsistent = false;
   std::string warning;
