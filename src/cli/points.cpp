@@ -10,14 +10,15 @@ namespace coxmesh::cli {
 void PointCloudCliOptions::add_to(CLI::App& cmd) {
   option = cmd.add_option("--points", file,
                           "mesh the manifold sampled by the points of FILE (.xyz .txt .csv .off .ply .npy); give its "
-                          "dimension with --m (default d-1)");
+                          "dimension with --m (default d-1)")
+               ->type_name("FILE");
   cmd.add_option("--pc-function", function,
                  "point clouds: blended (smooth, tolerates noise; default) or nearest (the frame of the nearest sample)")
       ->check(CLI::IsMember({"blended", "nearest"}));
   cmd.add_option("--neighbourhood", neighbourhood,
                  "point clouds: radius of the neighbourhoods whose PCA gives the normals (default 5 sample spacings)");
   cmd.add_option("--tube", tube, "point clouds: mesh only within T edge lengths of the samples (default 3; 0: no tube)");
-  cmd.add_option("--blend-width", blend_width, "point clouds: width of the blended function's Gaussian (default 2 spacings)");
+  cmd.add_option("--blend-width", blend_width, "point clouds: width of the blended function's Gaussian (default 2 spacings, more for noisy samples)");
   cmd.add_flag("--use-normals", use_normals, "point clouds: orient by the normals in the file instead of propagating");
 }
 

@@ -18,7 +18,8 @@ struct Samples {
 /// "sphere" (S² ⊂ R³), "torus" (radii 1, 0.4, area-uniform), "flat-torus" (S¹ × S¹ ⊂ R⁴), "s3"
 /// (S³ ⊂ R⁴), "two-spheres" (unit spheres centred 3 apart), "patch" (the saddle z = 0.2(x² − y²)
 /// over the unit disc: a disc with boundary), "rp2" (the Veronese-type RP² ⊂ R⁴:
-/// (x, y, z) ∈ S² ↦ (xy, xz, y² − z², 2yz)).
+/// (x, y, z) ∈ S² ↦ (xy, xz, y² − z², 2yz)), "klein" (the Klein bottle ⊂ R⁴:
+/// (u, v) ↦ ((1 + 0.4 cos v) cos u, (1 + 0.4 cos v) sin u, 0.4 sin v cos(u/2), 0.4 sin v sin(u/2))).
 inline Samples sample_manifold(const std::string& name, std::size_t n, double noise = 0, std::uint64_t seed = 7) {
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> gauss(0, 1);
@@ -36,7 +37,7 @@ inline Samples sample_manifold(const std::string& name, std::size_t n, double no
     }
     for (int i = 0; i < dim; ++i) x[i] /= std::sqrt(r);
   };
-  if (name == "flat-torus" || name == "s3" || name == "rp2") s.d = 4;
+  if (name == "flat-torus" || name == "s3" || name == "rp2" || name == "klein") s.d = 4;
   if (name == "s3") s.m = 3;
   for (std::size_t i = 0; i < n; ++i) {
     double x[4];
@@ -60,6 +61,9 @@ inline Samples sample_manifold(const std::string& name, std::size_t n, double no
     } else if (name == "patch") {
       const double r = std::sqrt(uniform(rng)), t = 2 * pi * uniform(rng), u = r * std::cos(t), v = r * std::sin(t);
       push({u, v, 0.2 * (u * u - v * v)});
+    } else if (name == "klein") {
+      const double u = 2 * pi * uniform(rng), v = 2 * pi * uniform(rng), r = 1 + 0.4 * std::cos(v);
+      push({r * std::cos(u), r * std::sin(u), 0.4 * std::sin(v) * std::cos(u / 2), 0.4 * std::sin(v) * std::sin(u / 2)});
     } else if (name == "rp2") {
       on_sphere(3, x);
       push({x[0] * x[1], x[0] * x[2], x[1] * x[1] - x[2] * x[2], 2 * x[1] * x[2]});
