@@ -43,6 +43,10 @@ fails_with "points m too big" "between 1 and d" "$bin" trace --points sphere.xyz
 fails_with "points preset parameter" "does not apply to --points" "$bin" trace --points sphere.xyz --radius 2 --no-output
 fails_with "points no normals" "has no normals" "$bin" trace --points sphere.xyz --use-normals --no-output
 fails_with "points wrong dim" "expected R^4" "$bin" trace --points sphere.xyz --dim 4 --no-output
+head -3 sphere.xyz > three.xyz
+fails_with "points too few" "too few for a 2-manifold" "$bin" trace --points three.xyz --no-output
+printf 'x,y,z\n1,2,3\n4,5\n' > ragged.csv
+fails_with "points ragged csv" "line 3 has 2 numbers, line 2 has 3" "$bin" trace --points ragged.csv --no-output
 err=$("$bin" trace --points sphere.xyz --function x --no-output 2>&1) && status=0 || status=$?
 check "points excludes function" "1 1" "$([[ $status -ne 0 ]] && echo 1) $(grep -c 'excludes' <<<"$err")"
 finish

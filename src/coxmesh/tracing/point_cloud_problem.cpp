@@ -56,7 +56,7 @@ PointCloudProblem make_point_cloud_problem(std::vector<double> samples, int d, i
   if (samples.size() % d != 0) throw InputError("the sample array is not n × d");
   const std::size_t n = samples.size() / d;
   if (n < static_cast<std::size_t>(m) + 2)
-    throw InputError(std::to_string(n) + " samples are too few for a " + std::to_string(m) + "-manifold (at least m + 2 = " +
+    throw InputError(std::to_string(n) + (n == 1 ? " sample is" : " samples are") + " too few for a " + std::to_string(m) + "-manifold (at least m + 2 = " +
                      std::to_string(m + 2) + ")");
   for (double v : samples)
     if (!std::isfinite(v)) throw InputError("the samples contain NaN or infinite coordinates");
