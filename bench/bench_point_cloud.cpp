@@ -59,7 +59,8 @@ void run_gudhi(const coxmesh::test::Samples& s, double spacing) {
   using TC = Gudhi::tangential_complex::Tangential_complex<Kernel, CGAL::Dynamic_dimension_tag, CGAL::Sequential_tag>;
   Kernel kernel;
   std::vector<Kernel::Point_d> points;
-  for (std::size_t i = 0; i < s.size(); ++i) points.emplace_back(s.points.begin() + i * s.d, s.points.begin() + (i + 1) * s.d);
+  for (std::size_t i = 0; i < s.size(); ++i)
+    points.emplace_back(s.points.begin() + i * s.d, s.points.begin() + (i + 1) * s.d);
   const auto t0 = Clock::now();
   TC tc(points, s.m, kernel);
   tc.compute_tangential_complex();
@@ -70,15 +71,16 @@ void run_gudhi(const coxmesh::test::Samples& s, double spacing) {
   const double fixing = seconds(t1);
   Gudhi::Simplex_tree<> tree;
   tc.create_complex(tree);
-  Gudhi::persistent_cohomology::Persistent_cohomology<Gudhi::Simplex_tree<>, Gudhi::persistent_cohomology::Field_Zp> pcoh(
-      tree, true);
+  Gudhi::persistent_cohomology::Persistent_cohomology<Gudhi::Simplex_tree<>, Gudhi::persistent_cohomology::Field_Zp>
+      pcoh(tree, true);
   pcoh.init_coefficients(2);
   pcoh.compute_persistent_cohomology();
   std::vector<std::size_t> betti;
   for (int b : pcoh.betti_numbers()) betti.push_back(b);
-  std::cout << "  GUDHI    betti " << list(betti) << ", " << before.num_inconsistent_stars << " inconsistent stars before the fix-up, "
-            << fix.final_num_inconsistent_stars << (fix.success ? " after (fixed)" : " after (not fixed)") << ", complex " << build
-            << " s + fix-up " << fixing << " s, total " << seconds(t0) << " s, peak " << peak_mib() << " MiB\n";
+  std::cout << "  GUDHI    betti " << list(betti) << ", " << before.num_inconsistent_stars
+            << " inconsistent stars before the fix-up, " << fix.final_num_inconsistent_stars
+            << (fix.success ? " after (fixed)" : " after (not fixed)") << ", complex " << build << " s + fix-up "
+            << fixing << " s, total " << seconds(t0) << " s, peak " << peak_mib() << " MiB\n";
 }
 
 }  // namespace
@@ -92,9 +94,9 @@ int main(int argc, char** argv) {
   std::vector<Case> cases;
   for (int i = 1; i + 2 < argc; i += 3) cases.push_back({argv[i], std::stoul(argv[i + 1]), std::stod(argv[i + 2])});
   if (cases.empty())
-    cases = {{"torus", 2000, 0},         {"torus", 2000, 0.01},        {"torus", 10000, 0},  {"torus", 10000, 0.01},
-             {"sphere", 10000, 0.01},    {"flat-torus", 10000, 0},     {"flat-torus", 10000, 0.01},
-             {"s3", 10000, 0},           {"rp2", 2000, 0}};
+    cases = {{"torus", 2000, 0},          {"torus", 2000, 0.01},   {"torus", 10000, 0},
+             {"torus", 10000, 0.01},      {"sphere", 10000, 0.01}, {"flat-torus", 10000, 0},
+             {"flat-torus", 10000, 0.01}, {"s3", 10000, 0},        {"rp2", 2000, 0}};
   for (const Case& c : cases) {
     const coxmesh::test::Samples s = coxmesh::test::sample_manifold(c.name, c.n, c.noise);
     std::cout << c.name << ", " << c.n << " samples, noise " << c.noise << "\n";

@@ -12,13 +12,16 @@ void PointCloudCliOptions::add_to(CLI::App& cmd) {
                           "mesh the manifold sampled by the points of FILE (.xyz .txt .csv .off .ply .npy); give its "
                           "dimension with --m (default d-1)")
                ->type_name("FILE");
-  cmd.add_option("--pc-function", function,
-                 "point clouds: blended (smooth, tolerates noise; default) or nearest (the frame of the nearest sample)")
+  cmd.add_option(
+         "--pc-function", function,
+         "point clouds: blended (smooth, tolerates noise; default) or nearest (the frame of the nearest sample)")
       ->check(CLI::IsMember({"blended", "nearest"}));
   cmd.add_option("--neighbourhood", neighbourhood,
                  "point clouds: radius of the neighbourhoods whose PCA gives the normals (default 5 sample spacings)");
-  cmd.add_option("--tube", tube, "point clouds: mesh only within T edge lengths of the samples (default 3; 0: no tube)");
-  cmd.add_option("--blend-width", blend_width, "point clouds: width of the blended function's Gaussian (default 2 spacings, more for noisy samples)");
+  cmd.add_option("--tube", tube,
+                 "point clouds: mesh only within T edge lengths of the samples (default 3; 0: no tube)");
+  cmd.add_option("--blend-width", blend_width,
+                 "point clouds: width of the blended function's Gaussian (default 2 spacings, more for noisy samples)");
   cmd.add_flag("--use-normals", use_normals, "point clouds: orient by the normals in the file instead of propagating");
 }
 
@@ -55,10 +58,11 @@ void print_point_cloud(std::ostream& os, const LoadedPointCloud& pc) {
   os << "  samples            " << pc.read << " read from " << pc.file << " (" << pc.format << ")";
   if (pc.duplicates) os << ", " << pc.duplicates << " exact duplicates removed";
   os << "; " << g.components << (g.components == 1 ? " component" : " components") << " in the neighbour graph\n"
-     << "  sample spacing     " << g.spacing << " (median nearest-neighbour distance); neighbourhood radius " << g.radius
-     << " (" << static_cast<int>(g.mean_neighbours + 0.5) << " samples on average)\n"
-     << "  edge length        " << g.edge_length << "; tube " << (g.tube_radius > 0 ? std::to_string(g.tube_radius) : "none")
-     << "; function " << (g.blend_width > 0 ? "blended (width " + std::to_string(g.blend_width) + ")" : "nearest frame") << "\n"
+     << "  sample spacing     " << g.spacing << " (median nearest-neighbour distance); neighbourhood radius "
+     << g.radius << " (" << static_cast<int>(g.mean_neighbours + 0.5) << " samples on average)\n"
+     << "  edge length        " << g.edge_length << "; tube "
+     << (g.tube_radius > 0 ? std::to_string(g.tube_radius) : "none") << "; function "
+     << (g.blend_width > 0 ? "blended (width " + std::to_string(g.blend_width) + ")" : "nearest frame") << "\n"
      << "  frames             " << g.frustrated_edges << " of " << g.compared_edges
      << " compared neighbour-graph edges frustrated" << (g.used_given_normals ? " (normals from the file)" : "")
      << "; samples read and prepared in " << pc.seconds << " s\n";

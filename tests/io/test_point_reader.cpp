@@ -49,7 +49,8 @@ std::string bytes(std::initializer_list<T> values) {
 }
 
 std::string npy(const std::string& descr, const std::string& shape, const std::string& data, bool fortran = false) {
-  std::string header = "{'descr': '" + descr + "', 'fortran_order': " + (fortran ? "True" : "False") + ", 'shape': " + shape + ", }";
+  std::string header =
+      "{'descr': '" + descr + "', 'fortran_order': " + (fortran ? "True" : "False") + ", 'shape': " + shape + ", }";
   while ((10 + header.size() + 1) % 64) header += ' ';
   header += '\n';
   std::string out = "\x93NUMPY";
@@ -117,7 +118,8 @@ TEST_F(PointReader, PlyBinary) {
   const std::string ply =
       "ply\nformat binary_little_endian 1.0\nelement extra 1\nproperty list uchar int ids\nelement vertex 2\n"
       "property float x\nproperty float y\nproperty float z\nproperty double quality\nelement face 1\n"
-      "property list uchar int vertex_indices\nend_header\n" + body;
+      "property list uchar int vertex_indices\nend_header\n" +
+      body;
   const PointSet s = read_points(write("b.ply", ply));
   EXPECT_EQ(s.points, (std::vector<double>{0, 0, 0, 2, 0, 0}));
   EXPECT_TRUE(s.normals.empty());
@@ -146,19 +148,39 @@ TEST_F(PointReader, BadInput) {
   rejects(write("ragged.txt", "1 2 3\n4 5\n"), "line 2 has 2 numbers, line 1 has 3");
   rejects(write("empty.xyz", "# nothing\n\n"), "no points");
   rejects(write("wrongdim.xyz", "1 2 3\n"), "expected R^4", PointReadOptions{4});
-  rejects(write("wide.txt", std::string(40 * 2, ' ') + "\n" + [] { std::string r; for (int i = 0; i < 40; ++i) r += "1 "; return r; }() + "\n"), "d must be between 1 and 31");
+  rejects(write(
+              "wide.txt", std::string(40 * 2, ' ') + "\n" +
+                              [] {
+                                std::string r;
+                                for (int i = 0; i < 40; ++i) r += "1 ";
+                                return r;
+                              }() +
+                              "\n"),
+          "d must be between 1 and 31");
   rejects(write("huge.off", "OFF\n1000000000 0 0\n0 0 0\n"), "more than the file can hold");
   rejects(write("short.off", "OFF\n3 0 0\n0 0 0\n1 1 1\n# a comment long enough\n"), "ends after 2 of 3 vertices");
   rejects(write("bad.off", "PLY\n"), "expected OFF");
-  rejects(write("huge.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 100000000\nproperty float x\nproperty float y\n"
-                           "property float z\nend_header\n" + bytes<float>({0, 0, 0})), "more than the file can hold");
-  rejects(write("big.ply", "ply\nformat binary_big_endian 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
-                          "property float z\nend_header\n" + bytes<float>({0, 0, 0})), "big-endian");
-  rejects(write("noz.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n"), "lacks x, y or z");
-  rejects(write("cut.ply", "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
-                           "end_header\n0 0 0\n\n\n\n\n\n\n"), "ends inside the vertex element");
-  rejects(write("nan.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
-                           "end_header\n0 nan 0\n"), "NaN");
+  rejects(write("huge.ply",
+                "ply\nformat binary_little_endian 1.0\nelement vertex 100000000\nproperty float x\nproperty float y\n"
+                "property float z\nend_header\n" +
+                    bytes<float>({0, 0, 0})),
+          "more than the file can hold");
+  rejects(write("big.ply",
+                "ply\nformat binary_big_endian 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+                "property float z\nend_header\n" +
+                    bytes<float>({0, 0, 0})),
+          "big-endian");
+  rejects(write("noz.ply",
+                "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n"),
+          "lacks x, y or z");
+  rejects(write("cut.ply",
+                "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
+                "end_header\n0 0 0\n\n\n\n\n\n\n"),
+          "ends inside the vertex element");
+  rejects(write("nan.ply",
+                "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
+                "end_header\n0 nan 0\n"),
+          "NaN");
   rejects(write("size.npy", npy("<f8", "(3, 4)", bytes<double>({1, 2}))), "announces 3 x 4 values");
   rejects(write("int.npy", npy("<i4", "(1, 2)", bytes<std::int32_t>({1, 2}))), "only float64");
   rejects(write("fortran.npy", npy("<f8", "(1, 2)", bytes<double>({1, 2}), true)), "Fortran");

@@ -63,7 +63,8 @@ inline Samples sample_manifold(const std::string& name, std::size_t n, double no
       push({u, v, 0.2 * (u * u - v * v)});
     } else if (name == "klein") {
       const double u = 2 * pi * uniform(rng), v = 2 * pi * uniform(rng), r = 1 + 0.4 * std::cos(v);
-      push({r * std::cos(u), r * std::sin(u), 0.4 * std::sin(v) * std::cos(u / 2), 0.4 * std::sin(v) * std::sin(u / 2)});
+      push(
+          {r * std::cos(u), r * std::sin(u), 0.4 * std::sin(v) * std::cos(u / 2), 0.4 * std::sin(v) * std::sin(u / 2)});
     } else if (name == "rp2") {
       on_sphere(3, x);
       push({x[0] * x[1], x[0] * x[2], x[1] * x[1] - x[2] * x[2], 2 * x[1] * x[2]});

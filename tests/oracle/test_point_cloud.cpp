@@ -35,8 +35,8 @@ Outcome mesh(std::vector<double> points, int d, int m, const PointCloudOptions& 
   to.skip_unusable_seeds = true;
   to.threads = threads;
   auto shared = threads > 1 ? ImplicitOracle::make_shared_values(t, p.function, p.domain) : nullptr;
-  TraceResult r = trace_manifold(t, [&] { return std::make_unique<ImplicitOracle>(t, p.function, p.domain, shared); },
-                                 p.seeds, to);
+  TraceResult r = trace_manifold(
+      t, [&] { return std::make_unique<ImplicitOracle>(t, p.function, p.domain, shared); }, p.seeds, to);
   Outcome out;
   out.status = r.status;
   out.simplices = r.simplices.size();
@@ -86,17 +86,18 @@ INSTANTIATE_TEST_SUITE_P(
     });
 
 // The nearest-frame function on a few of them, and the denser noisy torus where both must hold.
-INSTANTIATE_TEST_SUITE_P(
-    Nearest, Synthetic,
-    ::testing::Combine(::testing::Values(Case{"sphere", 2000, {1, 0, 1}}, Case{"torus", 4000, {1, 2, 1}},
-                                         Case{"flat-torus", 2000, {1, 2, 1}}),
-                       ::testing::Values(0.0, 0.01), ::testing::Values(PointCloudFunction::nearest)),
-    [](const auto& info) {
-      std::string name = std::get<0>(info.param).name;
-      for (char& ch : name)
-        if (ch == '-') ch = '_';
-      return name + (std::get<1>(info.param) > 0 ? "_noisy" : "_clean");
-    });
+INSTANTIATE_TEST_SUITE_P(Nearest, Synthetic,
+                         ::testing::Combine(::testing::Values(Case{"sphere", 2000, {1, 0, 1}},
+                                                              Case{"torus", 4000, {1, 2, 1}},
+                                                              Case{"flat-torus", 2000, {1, 2, 1}}),
+                                            ::testing::Values(0.0, 0.01),
+                                            ::testing::Values(PointCloudFunction::nearest)),
+                         [](const auto& info) {
+                           std::string name = std::get<0>(info.param).name;
+                           for (char& ch : name)
+                             if (ch == '-') ch = '_';
+                           return name + (std::get<1>(info.param) > 0 ? "_noisy" : "_clean");
+                         });
 
 TEST(PointCloud, NonOrientableIsFlagged) {
   // RP² and the Klein bottle in R⁴ are not orientable: no single-valued function R⁴ → R² has
@@ -111,7 +112,7 @@ TEST(PointCloud, NonOrientableIsFlagged) {
       EXPECT_NE(o.diagnostics.warning.find("cannot be trusted"), std::string::npos);
       EXPECT_NE(o.diagnostics.warning.find(std::to_string(o.diagnostics.frustrated_edges)), std::string::npos);
       EXPECT_TRUE(o.topology.is_manifold);  // still a PL manifold: only its topology is wrong
-      EXPECT_NE(o.topology.betti[2], 1u);  // RP² and the Klein bottle are closed: β₂ = 1 over Z/2
+      EXPECT_NE(o.topology.betti[2], 1u);   // RP² and the Klein bottle are closed: β₂ = 1 over Z/2
     }
   }
 }
@@ -144,7 +145,8 @@ TEST(PointCloud, DefaultsFollowTheSpacing) {
   double far[3] = {5, 5, 5}, dv;
   p.domain->evaluate(far, &dv);
   EXPECT_GT(dv, 0);  // outside the tube
-  EXPECT_EQ(make_point_cloud_problem(test::sample_manifold("two-spheres", 2000).points, 3, 2).diagnostics.components, 2u);
+  EXPECT_EQ(make_point_cloud_problem(test::sample_manifold("two-spheres", 2000).points, 3, 2).diagnostics.components,
+            2u);
 }
 
 TEST(PointCloud, GivenNormalsOrient) {
@@ -158,7 +160,7 @@ TEST(PointCloud, GivenNormalsOrient) {
 
 TEST(PointCloud, BadInput) {
   const std::vector<double> three = {0, 0, 0, 1, 0, 0, 0, 1, 0};
-  EXPECT_THROW(make_point_cloud_problem(three, 3, 2), InputError);  // n < m + 2
+  EXPECT_THROW(make_point_cloud_problem(three, 3, 2), InputError);                                        // n < m + 2
   EXPECT_THROW(make_point_cloud_problem(test::sample_manifold("sphere", 100).points, 3, 3), InputError);  // m = d
   EXPECT_THROW(make_point_cloud_problem(test::sample_manifold("sphere", 100).points, 3, 0), InputError);
   std::vector<double> nan = test::sample_manifold("sphere", 100).points;
@@ -182,8 +184,9 @@ fs::path cgal_data() {
   // Extract to a private directory, then rename: tests running in parallel never see half a file.
   const fs::path tmp = fs::current_path() / ("cgal_data.tmp." + std::to_string(::getpid()));
   fs::create_directories(tmp);
-  const std::string cmd = "tar -xzf '" + archive.string() + "' -C '" + tmp.string() +
-                          "' data/meshes/bunny00.off data/meshes/knot1.off data/points_3/kitten.xyz data/points_3/sphere_20k.xyz";
+  const std::string cmd =
+      "tar -xzf '" + archive.string() + "' -C '" + tmp.string() +
+      "' data/meshes/bunny00.off data/meshes/knot1.off data/points_3/kitten.xyz data/points_3/sphere_20k.xyz";
   if (std::system(cmd.c_str()) != 0) {
     fs::remove_all(tmp);
     return {};

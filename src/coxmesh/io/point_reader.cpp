@@ -106,8 +106,8 @@ double checked(std::string_view token, const std::string& path, const std::strin
 }
 
 // .xyz .txt .csv: rows of numbers.
-PointSet read_rows(const std::string& path, std::string_view text, char separator, bool header_allowed, bool xyz_normals,
-                   const PointReadOptions& options) {
+PointSet read_rows(const std::string& path, std::string_view text, char separator, bool header_allowed,
+                   bool xyz_normals, const PointReadOptions& options) {
   PointSet set;
   Lines lines(text);
   std::string_view line;
@@ -116,7 +116,8 @@ PointSet read_rows(const std::string& path, std::string_view text, char separato
   while (lines.next(line)) {
     const std::vector<std::string_view> tokens = split(line, separator);
     if (tokens.empty()) continue;
-    if (first && header_allowed && std::any_of(tokens.begin(), tokens.end(), [](std::string_view t) { return !to_number(t); })) {
+    if (first && header_allowed &&
+        std::any_of(tokens.begin(), tokens.end(), [](std::string_view t) { return !to_number(t); })) {
       first = false;  // a header line of column names
       continue;
     }
@@ -125,8 +126,8 @@ PointSet read_rows(const std::string& path, std::string_view text, char separato
       width = tokens.size();
       first_line = lines.number();
     } else if (tokens.size() != width) {
-      fail(path, where(lines.number()) + " has " + std::to_string(tokens.size()) + " numbers, " + where(first_line) + " has " +
-                     std::to_string(width));
+      fail(path, where(lines.number()) + " has " + std::to_string(tokens.size()) + " numbers, " + where(first_line) +
+                     " has " + std::to_string(width));
     }
     for (std::string_view t : tokens) set.points.push_back(checked(t, path, where(lines.number())));
   }
@@ -159,7 +160,8 @@ PointSet read_off(const std::string& path, std::string_view text) {
   };
   if (!next_tokens()) fail(path, "empty file: expected an OFF header");
   std::string_view key = tokens[0];
-  if (key.size() < 3 || key.substr(key.size() - 3) != "OFF") fail(path, "line 1: expected OFF, NOFF, COFF or nOFF, found '" + std::string(key) + "'");
+  if (key.size() < 3 || key.substr(key.size() - 3) != "OFF")
+    fail(path, "line 1: expected OFF, NOFF, COFF or nOFF, found '" + std::string(key) + "'");
   // Prefixes in their fixed order: ST (texture coordinates) and C (colour) only add numbers after
   // the coordinates, which are ignored; N adds a normal; n announces the dimension.
   std::string_view prefix = key.substr(0, key.size() - 3);
@@ -188,7 +190,8 @@ PointSet read_off(const std::string& path, std::string_view text) {
   int d = 3;
   if (given_dim) {
     const long long dim = take("dimension");
-    if (dim < 1 || dim > kMaxDimension) fail(path, "dimension " + std::to_string(dim) + " is outside 1.." + std::to_string(kMaxDimension));
+    if (dim < 1 || dim > kMaxDimension)
+      fail(path, "dimension " + std::to_string(dim) + " is outside 1.." + std::to_string(kMaxDimension));
     d = static_cast<int>(dim);
   }
   const long long nv = take("vertex count");
@@ -201,10 +204,12 @@ PointSet read_off(const std::string& path, std::string_view text) {
   set.dimension = d;
   set.points.reserve(nv * d);
   for (long long v = 0; v < nv; ++v) {
-    if (!next_tokens()) fail(path, "the file ends after " + std::to_string(v) + " of " + std::to_string(nv) + " vertices");
+    if (!next_tokens())
+      fail(path, "the file ends after " + std::to_string(v) + " of " + std::to_string(nv) + " vertices");
     const std::size_t need = d * (normal ? 2 : 1);
     if (tokens.size() < need)
-      fail(path, where(lines.number()) + ": a vertex needs " + std::to_string(need) + " numbers, found " + std::to_string(tokens.size()));
+      fail(path, where(lines.number()) + ": a vertex needs " + std::to_string(need) + " numbers, found " +
+                     std::to_string(tokens.size()));
     for (int t = 0; t < d; ++t) set.points.push_back(checked(tokens[t], path, where(lines.number())));
     if (normal)
       for (int t = 0; t < d; ++t) set.normals.push_back(checked(tokens[d + t], path, where(lines.number())));
@@ -226,7 +231,8 @@ struct PlyElement {
 int ply_size(const std::string& type, const std::string& path) {
   if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
   if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
-  if (type == "int" || type == "uint" || type == "int32" || type == "uint32" || type == "float" || type == "float32") return 4;
+  if (type == "int" || type == "uint" || type == "int32" || type == "uint32" || type == "float" || type == "float32")
+    return 4;
   if (type == "double" || type == "float64") return 8;
   fail(path, "unknown PLY property type '" + type + "'");
 }
@@ -251,7 +257,8 @@ PointSet read_ply(const std::string& path, std::string_view text) {
   static_assert(std::endian::native == std::endian::little, "binary PLY reading assumes a little-endian machine");
   Lines lines(text);
   std::string_view line;
-  if (!lines.next(line) || split(line, ' ').empty() || split(line, ' ')[0] != "ply") fail(path, "line 1: not a PLY file (no 'ply')");
+  if (!lines.next(line) || split(line, ' ').empty() || split(line, ' ')[0] != "ply")
+    fail(path, "line 1: not a PLY file (no 'ply')");
   std::string format;
   std::vector<PlyElement> elements;
   bool ended = false;
@@ -267,7 +274,8 @@ PointSet read_ply(const std::string& path, std::string_view text) {
       format = t[1];
     } else if (t[0] == "element" && t.size() == 3) {
       const std::optional<double> c = to_number(t[2]);
-      if (!c || *c < 0 || *c != std::floor(*c) || *c > 1e15) fail(path, where(lines.number()) + ": bad element count '" + std::string(t[2]) + "'");
+      if (!c || *c < 0 || *c != std::floor(*c) || *c > 1e15)
+        fail(path, where(lines.number()) + ": bad element count '" + std::string(t[2]) + "'");
       elements.push_back({std::string(t[1]), static_cast<long long>(*c), {}});
     } else if (t[0] == "property" && !elements.empty() && t.size() == 3) {
       elements.back().properties.push_back({std::string(t[2]), std::string(t[1]), ""});
@@ -281,10 +289,12 @@ PointSet read_ply(const std::string& path, std::string_view text) {
     }
   }
   if (!ended) fail(path, "the PLY header has no end_header");
-  if (format == "binary_big_endian") fail(path, "big-endian binary PLY is not supported (convert it to ascii or little-endian)");
+  if (format == "binary_big_endian")
+    fail(path, "big-endian binary PLY is not supported (convert it to ascii or little-endian)");
   if (format != "ascii" && format != "binary_little_endian") fail(path, "unknown PLY format '" + format + "'");
   const bool binary = format == "binary_little_endian";
-  const auto vertex = std::find_if(elements.begin(), elements.end(), [](const PlyElement& e) { return e.name == "vertex"; });
+  const auto vertex =
+      std::find_if(elements.begin(), elements.end(), [](const PlyElement& e) { return e.name == "vertex"; });
   if (vertex == elements.end()) fail(path, "no vertex element in the PLY header");
   int xyz[3] = {-1, -1, -1}, nxyz[3] = {-1, -1, -1};
   std::size_t vertex_bytes = 0;
@@ -315,7 +325,8 @@ PointSet read_ply(const std::string& path, std::string_view text) {
   auto keep = [&](const std::string& place) {
     for (int a = 0; a < 3; ++a) {
       const double v = row[xyz[a]];
-      if (!std::isfinite(v)) fail(path, place + ": " + (std::isnan(v) ? "NaN" : "an infinite value") + " in the coordinates");
+      if (!std::isfinite(v))
+        fail(path, place + ": " + (std::isnan(v) ? "NaN" : "an infinite value") + " in the coordinates");
       set.points.push_back(v);
     }
     if (normals)
@@ -331,8 +342,8 @@ PointSet read_ply(const std::string& path, std::string_view text) {
         } while (t.empty());
         if (&e != &*vertex) continue;
         if (t.size() != row.size())
-          fail(path, where(lines.number()) + ": a vertex has " + std::to_string(t.size()) + " values, the header declares " +
-                         std::to_string(row.size()));
+          fail(path, where(lines.number()) + ": a vertex has " + std::to_string(t.size()) +
+                         " values, the header declares " + std::to_string(row.size()));
         for (std::size_t j = 0; j < t.size(); ++j) {
           const std::optional<double> v = to_number(t[j]);
           if (!v) fail(path, where(lines.number()) + ": '" + std::string(t[j]) + "' is not a number");
@@ -382,7 +393,8 @@ PointSet read_npy(const std::string& path, std::string_view text) {
     start = 10;
   } else if (major == 2 || major == 3) {
     if (text.size() < 12) fail(path, "truncated .npy header");
-    for (int b = 0; b < 4; ++b) header_len |= static_cast<std::size_t>(static_cast<unsigned char>(text[8 + b])) << (8 * b);
+    for (int b = 0; b < 4; ++b)
+      header_len |= static_cast<std::size_t>(static_cast<unsigned char>(text[8 + b])) << (8 * b);
     start = 12;
   } else {
     fail(path, "unsupported .npy version " + std::to_string(major));
@@ -416,21 +428,25 @@ PointSet read_npy(const std::string& path, std::string_view text) {
     if (!s || *s < 0 || *s != std::floor(*s) || *s > 1e15) fail(path, "malformed shape in the .npy header");
     shape.push_back(static_cast<long long>(*s));
   }
-  if (shape.size() != 2) fail(path, "the array must have shape (n, d), found " + std::to_string(shape.size()) + " dimensions");
-  if (shape[1] < 1 || shape[1] > kMaxDimension) fail(path, "d = " + std::to_string(shape[1]) + " is outside 1.." + std::to_string(kMaxDimension));
+  if (shape.size() != 2)
+    fail(path, "the array must have shape (n, d), found " + std::to_string(shape.size()) + " dimensions");
+  if (shape[1] < 1 || shape[1] > kMaxDimension)
+    fail(path, "d = " + std::to_string(shape[1]) + " is outside 1.." + std::to_string(kMaxDimension));
   const std::size_t data = start + header_len;
   const double bytes = static_cast<double>(shape[0]) * shape[1] * item;
   if (bytes != static_cast<double>(text.size() - data))
-    fail(path, "the header announces " + std::to_string(shape[0]) + " x " + std::to_string(shape[1]) + " values, the file holds " +
-                   std::to_string((text.size() - data) / item));
+    fail(path, "the header announces " + std::to_string(shape[0]) + " x " + std::to_string(shape[1]) +
+                   " values, the file holds " + std::to_string((text.size() - data) / item));
   if (shape[0] == 0) fail(path, "no points in the file");
   PointSet set;
   set.dimension = static_cast<int>(shape[1]);
   set.points.resize(shape[0] * shape[1]);
   for (std::size_t i = 0; i < set.points.size(); ++i) {
-    const double x = item == 8 ? ply_value(text.data() + data + 8 * i, "double") : ply_value(text.data() + data + 4 * i, "float");
+    const double x =
+        item == 8 ? ply_value(text.data() + data + 8 * i, "double") : ply_value(text.data() + data + 4 * i, "float");
     if (!std::isfinite(x))
-      fail(path, "point " + std::to_string(i / shape[1]) + ": " + (std::isnan(x) ? "NaN" : "an infinite value") + " in the coordinates");
+      fail(path, "point " + std::to_string(i / shape[1]) + ": " + (std::isnan(x) ? "NaN" : "an infinite value") +
+                     " in the coordinates");
     set.points[i] = x;
   }
   return set;
@@ -444,8 +460,9 @@ std::size_t remove_duplicate_points(PointSet& set) {
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), 0);
   auto row = [&](std::size_t i) { return set.points.data() + i * d; };
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return std::lexicographical_compare(row(a), row(a) + d, row(b), row(b) + d); });
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return std::lexicographical_compare(row(a), row(a) + d, row(b), row(b) + d);
+  });
   std::vector<char> drop(n, 0);
   std::size_t removed = 0;
   for (std::size_t i = 1; i < n; ++i)
@@ -466,22 +483,30 @@ std::size_t remove_duplicate_points(PointSet& set) {
 
 PointSet read_points(const std::string& path, const PointReadOptions& options) {
   std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   static const char* known[] = {".xyz", ".txt", ".csv", ".off", ".ply", ".npy"};
   if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return ext == k; }) == std::end(known))
     fail(path, "unknown point file extension '" + ext + "' (use .xyz, .txt, .csv, .off, .ply or .npy)");
   const std::string text = read_file(path);
   PointSet set;
-  if (ext == ".xyz" || ext == ".txt") set = read_rows(path, text, ' ', false, ext == ".xyz", options);
-  else if (ext == ".csv") set = read_rows(path, text, ',', true, false, options);
-  else if (ext == ".off") set = read_off(path, text);
-  else if (ext == ".ply") set = read_ply(path, text);
-  else set = read_npy(path, text);
+  if (ext == ".xyz" || ext == ".txt")
+    set = read_rows(path, text, ' ', false, ext == ".xyz", options);
+  else if (ext == ".csv")
+    set = read_rows(path, text, ',', true, false, options);
+  else if (ext == ".off")
+    set = read_off(path, text);
+  else if (ext == ".ply")
+    set = read_ply(path, text);
+  else
+    set = read_npy(path, text);
   set.format = ext.substr(1);
   if (set.dimension < 1 || set.dimension > kMaxDimension)
-    fail(path, "points of R^" + std::to_string(set.dimension) + ": d must be between 1 and " + std::to_string(kMaxDimension));
+    fail(path,
+         "points of R^" + std::to_string(set.dimension) + ": d must be between 1 and " + std::to_string(kMaxDimension));
   if (options.dimension && set.dimension != options.dimension)
-    fail(path, "the points are in R^" + std::to_string(set.dimension) + ", expected R^" + std::to_string(options.dimension));
+    fail(path,
+         "the points are in R^" + std::to_string(set.dimension) + ", expected R^" + std::to_string(options.dimension));
   for (double v : set.normals)
     if (!std::isfinite(v)) fail(path, "the normals contain NaN or infinite values");
   set.duplicates = remove_duplicate_points(set);

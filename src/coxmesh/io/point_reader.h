@@ -12,9 +12,9 @@ namespace coxmesh {
 struct PointSet {
   int dimension = 0;
   std::vector<double> points;
-  std::vector<double> normals;   ///< empty, or one per point
-  std::size_t duplicates = 0;    ///< exact duplicates removed (the first occurrence kept)
-  std::string format;            ///< "xyz", "txt", "csv", "off", "ply", "npy"
+  std::vector<double> normals;  ///< empty, or one per point
+  std::size_t duplicates = 0;   ///< exact duplicates removed (the first occurrence kept)
+  std::string format;           ///< "xyz", "txt", "csv", "off", "ply", "npy"
   std::size_t size() const { return dimension ? points.size() / dimension : 0; }
 };
 

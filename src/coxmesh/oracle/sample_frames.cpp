@@ -63,7 +63,8 @@ Square polar(const Square& a) {
 SampleFrames estimate_frames(const SampleTree& tree, int m, const FrameOptions& options) {
   const int d = tree.dimension(), k = d - m;
   const std::size_t n = tree.size();
-  if (m < 1 || k < 1) throw InputError("the manifold dimension m must be between 1 and d − 1 = " + std::to_string(d - 1));
+  if (m < 1 || k < 1)
+    throw InputError("the manifold dimension m must be between 1 and d − 1 = " + std::to_string(d - 1));
   if (!(options.radius > 0)) throw InputError("the neighbourhood radius must be positive");
   if (!options.reference_normals.empty() && (k != 1 || options.reference_normals.size() != n * d))
     throw InputError("given normals need codimension 1 and one normal of R^" + std::to_string(d) + " per sample");
@@ -112,15 +113,18 @@ SampleFrames estimate_frames(const SampleTree& tree, int m, const FrameOptions& 
     for (int t = 0; t < d; ++t) out.centers[i * d + t] = mean[t];
     const int graph = std::min(count, options.graph_neighbours + 1);
     for (int j = 0; j < graph; ++j)
-      if (nb[j] != i) edges.push_back({0.0, static_cast<std::uint32_t>(std::min<std::size_t>(i, nb[j])),
-                                       static_cast<std::uint32_t>(std::max<std::size_t>(i, nb[j]))});
+      if (nb[j] != i)
+        edges.push_back({0.0, static_cast<std::uint32_t>(std::min<std::size_t>(i, nb[j])),
+                         static_cast<std::uint32_t>(std::max<std::size_t>(i, nb[j]))});
   }
   out.mean_neighbours = static_cast<double>(total_neighbours) / n;
 
   // The neighbour graph (each edge once), weighted 1 − |det(U_iᵀU_j)|: 0 when the normal spaces agree.
-  std::sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; });
-  edges.erase(std::unique(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.a == y.a && x.b == y.b; }),
-              edges.end());
+  std::sort(edges.begin(), edges.end(),
+            [](const Edge& x, const Edge& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; });
+  edges.erase(
+      std::unique(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.a == y.a && x.b == y.b; }),
+      edges.end());
   for (Edge& e : edges) e.weight = 1 - std::abs(overlap(out.frame(e.a), out.frame(e.b), k, d).determinant());
   out.graph_edges = edges.size();
   std::sort(edges.begin(), edges.end());

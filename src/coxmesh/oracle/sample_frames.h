@@ -11,10 +11,10 @@
 namespace coxmesh {
 
 struct FrameOptions {
-  double radius = 0;         ///< neighbourhood radius (> 0)
-  int min_neighbours = 8;    ///< fewer samples within the radius: the nearest min_neighbours instead
-  int max_neighbours = 64;   ///< at most this many nearest samples within the radius go into the PCA
-  int graph_neighbours = 12; ///< the nearest this many of them are joined in the neighbour graph
+  double radius = 0;          ///< neighbourhood radius (> 0)
+  int min_neighbours = 8;     ///< fewer samples within the radius: the nearest min_neighbours instead
+  int max_neighbours = 64;    ///< at most this many nearest samples within the radius go into the PCA
+  int graph_neighbours = 12;  ///< the nearest this many of them are joined in the neighbour graph
   /// Normals given with the samples (n × d, codimension 1 only; empty if none): they fix the sign
   /// of each estimated normal instead of the propagation along the tree.
   std::vector<double> reference_normals;
@@ -23,16 +23,16 @@ struct FrameOptions {
 /// The frames and the diagnostics of their synchronisation.
 struct SampleFrames {
   int d = 0, k = 0;
-  std::vector<double> centers;           ///< n × d: centroid of each sample's neighbourhood
-  std::vector<double> normals;           ///< n × k × d: the k orthonormal normals of sample i, one row each
-  std::vector<double> flatness;          ///< n: (sum of the k normal eigenvalues) / (trace) of the local covariance
-  std::vector<double> thickness;         ///< n: RMS distance of the neighbourhood from its tangent plane (noise and curvature)
+  std::vector<double> centers;    ///< n × d: centroid of each sample's neighbourhood
+  std::vector<double> normals;    ///< n × k × d: the k orthonormal normals of sample i, one row each
+  std::vector<double> flatness;   ///< n: (sum of the k normal eigenvalues) / (trace) of the local covariance
+  std::vector<double> thickness;  ///< n: RMS distance of the neighbourhood from its tangent plane (noise and curvature)
   std::vector<std::uint32_t> component;  ///< n: connected component of the neighbour graph (0, 1, … by first sample)
   std::uint32_t components = 0;
-  std::size_t graph_edges = 0;           ///< edges of the (symmetrised) neighbour graph
-  std::size_t compared_edges = 0;        ///< edges whose normal spaces are within 45°: their frames can be compared
-  std::size_t frustrated_edges = 0;      ///< compared edges whose frames disagree: det(U_iᵀU_j) < 0 or a rotation > 60°
-  double mean_neighbours = 0;            ///< samples per PCA neighbourhood, on average
+  std::size_t graph_edges = 0;       ///< edges of the (symmetrised) neighbour graph
+  std::size_t compared_edges = 0;    ///< edges whose normal spaces are within 45°: their frames can be compared
+  std::size_t frustrated_edges = 0;  ///< compared edges whose frames disagree: det(U_iᵀU_j) < 0 or a rotation > 60°
+  double mean_neighbours = 0;        ///< samples per PCA neighbourhood, on average
   const double* frame(std::size_t i) const { return normals.data() + i * k * d; }
 };
 

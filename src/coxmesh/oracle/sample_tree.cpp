@@ -20,7 +20,9 @@ struct Rows {
   std::size_t kdtree_get_point_count() const { return n; }
   double kdtree_get_pt(std::size_t i, std::size_t j) const { return data[i * d + j]; }
   template <class Box>
-  bool kdtree_get_bbox(Box&) const { return false; }
+  bool kdtree_get_bbox(Box&) const {
+    return false;
+  }
 };
 
 // Keeps the `capacity` nearest samples closer than a radius, sorted, in caller-owned arrays (no
@@ -72,8 +74,8 @@ class TreeIndex final : public SampleTree::Index {
   }
 
  private:
-  using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Rows, double, std::uint32_t>, Rows,
-                                                   Dim, std::uint32_t>;
+  using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Rows, double, std::uint32_t>,
+                                                   Rows, Dim, std::uint32_t>;
   Rows rows_;
   Tree tree_;
 };
@@ -92,7 +94,8 @@ std::unique_ptr<const SampleTree::Index> make_index(const Rows& rows) {
 
 SampleTree::SampleTree(std::vector<double> points, int d) : points_(std::move(points)), d_(d) {
   check_dimension(d);
-  if (points_.empty() || points_.size() % d != 0) throw InputError("a point cloud needs at least one point of R^" + std::to_string(d));
+  if (points_.empty() || points_.size() % d != 0)
+    throw InputError("a point cloud needs at least one point of R^" + std::to_string(d));
   if (points_.size() / d >= 0xFFFFFFFFu) throw InputError("too many samples (at most 2^32 − 1)");
   index_ = make_index<1>(Rows{points_.data(), points_.size() / d, d});
 }

@@ -15,8 +15,8 @@ namespace {
 
 // Up to `count` samples of one component spread over it: farthest-point sampling from its
 // flattest sample (the best local plane), in a deterministic order.
-std::vector<std::uint32_t> spread_samples(const SampleTree& tree, const SampleFrames& fr, const std::vector<std::uint32_t>& members,
-                                          int count) {
+std::vector<std::uint32_t> spread_samples(const SampleTree& tree, const SampleFrames& fr,
+                                          const std::vector<std::uint32_t>& members, int count) {
   const int d = tree.dimension();
   std::uint32_t first = members[0];
   for (std::uint32_t i : members)
@@ -48,16 +48,17 @@ std::string percent(double x) {
 
 }  // namespace
 
-PointCloudProblem make_point_cloud_problem(std::vector<double> samples, int d, int m, const PointCloudOptions& options) {
+PointCloudProblem make_point_cloud_problem(std::vector<double> samples, int d, int m,
+                                           const PointCloudOptions& options) {
   check_dimension(d);
   if (m < 1 || m >= d)
-    throw InputError("the manifold dimension --m must be between 1 and d − 1 = " + std::to_string(d - 1) +
+    throw InputError("the manifold dimension m must be between 1 and d − 1 = " + std::to_string(d - 1) +
                      " for samples of R^" + std::to_string(d));
   if (samples.size() % d != 0) throw InputError("the sample array is not n × d");
   const std::size_t n = samples.size() / d;
   if (n < static_cast<std::size_t>(m) + 2)
-    throw InputError(std::to_string(n) + (n == 1 ? " sample is" : " samples are") + " too few for a " + std::to_string(m) + "-manifold (at least m + 2 = " +
-                     std::to_string(m + 2) + ")");
+    throw InputError(std::to_string(n) + (n == 1 ? " sample is" : " samples are") + " too few for a " +
+                     std::to_string(m) + "-manifold (at least m + 2 = " + std::to_string(m + 2) + ")");
   for (double v : samples)
     if (!std::isfinite(v)) throw InputError("the samples contain NaN or infinite coordinates");
   auto positive_or_zero = [](double v, const char* what) {
@@ -103,8 +104,7 @@ PointCloudProblem make_point_cloud_problem(std::vector<double> samples, int d, i
   // Orientable manifolds give no frustrated edges but a few isolated ones at sharp features or in
   // noise; a non-orientable one gives a seam of them across the manifold, whose edge count grows
   // like n^((m-1)/m), at least √n for m ≥ 2 (RP² ⊂ R⁴: 5-6 √E from 2,000 to 50,000 samples).
-  diag.frames_inconsistent =
-      fr.frustrated_edges > std::max(8.0, std::sqrt(static_cast<double>(fr.compared_edges)));
+  diag.frames_inconsistent = fr.frustrated_edges > std::max(8.0, std::sqrt(static_cast<double>(fr.compared_edges)));
   if (diag.frames_inconsistent) {
     std::ostringstream w;
     w << fr.frustrated_edges << " of " << fr.compared_edges << " neighbour-graph edges ("
@@ -121,7 +121,7 @@ PointCloudProblem make_point_cloud_problem(std::vector<double> samples, int d, i
   diag.blend_width =
       options.blend_width > 0 ? options.blend_width : options.blend_factor * std::max(diag.spacing, diag.thickness);
   p.function = options.function == PointCloudFunction::nearest ? nearest_frame_function(model)
-                                                                : blended_frame_function(model, diag.blend_width);
+                                                               : blended_frame_function(model, diag.blend_width);
   if (options.function == PointCloudFunction::nearest) diag.blend_width = 0;
   diag.tube_radius = options.tube * diag.edge_length;
   if (options.tube > 0) p.domain = tube_domain(model, diag.tube_radius);

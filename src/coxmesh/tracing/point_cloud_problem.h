@@ -17,15 +17,15 @@ namespace coxmesh {
 enum class PointCloudFunction { nearest, blended };
 
 struct PointCloudOptions {
-  double edge_length = 0;     ///< longest edge of the triangulation; 0: edge_factor × spacing
+  double edge_length = 0;  ///< longest edge of the triangulation; 0: edge_factor × spacing
   /// 0: 2 for curves and surfaces, 2(m − 1) above (the cell complex of an m-manifold grows like
   /// (size/h)^m with a constant growing fast with m: S³ from 50,000 samples takes 0.3 GB at 4
   /// spacings, 1.9 GB at 2, with the same topology).
   double edge_factor = 0;
-  double radius = 0;          ///< PCA neighbourhood radius; 0: radius_factor × spacing
+  double radius = 0;  ///< PCA neighbourhood radius; 0: radius_factor × spacing
   double radius_factor = 5.0;
-  int min_neighbours = 0;     ///< fewer samples within the radius: use this many nearest (0: 4(m + 1))
-  double tube = 3.0;          ///< tube radius in edge lengths (the domain); 0: no tube
+  int min_neighbours = 0;  ///< fewer samples within the radius: use this many nearest (0: 4(m + 1))
+  double tube = 3.0;       ///< tube radius in edge lengths (the domain); 0: no tube
   PointCloudFunction function = PointCloudFunction::blended;
   /// w of the blended function; 0: blend_factor × max(spacing, thickness), so that it averages
   /// over the noise when the samples are noisier than they are dense.
@@ -39,10 +39,10 @@ struct PointCloudOptions {
 struct PointCloudDiagnostics {
   std::size_t samples = 0;
   int ambient_dimension = 0, manifold_dimension = 0;
-  double spacing = 0;          ///< median distance from a sample to its nearest other sample
-  double thickness = 0;        ///< median RMS distance of a neighbourhood from its tangent plane: noise (and curvature)
+  double spacing = 0;    ///< median distance from a sample to its nearest other sample
+  double thickness = 0;  ///< median RMS distance of a neighbourhood from its tangent plane: noise (and curvature)
   double radius = 0, edge_length = 0, tube_radius = 0, blend_width = 0;
-  double mean_neighbours = 0;  ///< samples per PCA neighbourhood
+  double mean_neighbours = 0;    ///< samples per PCA neighbourhood
   std::uint32_t components = 0;  ///< connected components of the neighbour graph
   std::size_t graph_edges = 0, compared_edges = 0, frustrated_edges = 0;
   bool used_given_normals = false;
@@ -72,6 +72,7 @@ struct PointCloudProblem {
 ///   Triangulation T = Triangulation::coxeter(3).with_longest_edge(p.edge_length);
 ///   ImplicitOracle oracle(T, p.function, p.domain);
 ///   TraceResult r = trace_manifold(T, oracle, p.seeds, {.box = p.box, .skip_unusable_seeds = true});
-PointCloudProblem make_point_cloud_problem(std::vector<double> samples, int d, int m, const PointCloudOptions& options = {});
+PointCloudProblem make_point_cloud_problem(std::vector<double> samples, int d, int m,
+                                           const PointCloudOptions& options = {});
 
 }  // namespace coxmesh
