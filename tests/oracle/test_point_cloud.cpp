@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cstdlib>
 #include <filesystem>
+#include <new>
 
 #include "coxmesh/cell_complex/cell_complex.h"
 #include "coxmesh/cell_complex/topology.h"
@@ -17,6 +19,21 @@
 
 using namespace coxmesh;
 namespace fs = std::filesystem;
+
+// Every allocation of this test program is counted: the point-cloud functions must not allocate
+// when evaluated (they are called once per lattice vertex, millions of times). Not with
+// AddressSanitizer, which has its own operator new.
+#ifndef __SANITIZE_ADDRESS__
+static std::atomic<std::size_t> allocations{0};
+// (Not inlined: GCC would otherwise pair the malloc and free across the replacement operators.)
+[[gnu::noinline]] void* operator new(std::size_t size) {
+  ++allocations;
+  if (void* p = std::malloc(size ? size : 1)) return p;
+  throw std::bad_alloc();
+}
+[[gnu::noinline]] void operator delete(void* p) noexcept { std::free(p); }
+[[gnu::noinline]] void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#endif
 
 namespace {
 
@@ -148,6 +165,27 @@ TEST(PointCloud, DefaultsFollowTheSpacing) {
   EXPECT_EQ(make_point_cloud_problem(test::sample_manifold("two-spheres", 2000).points, 3, 2).diagnostics.components,
             2u);
 }
+
+#ifndef __SANITIZE_ADDRESS__
+TEST(PointCloud, EvaluationAllocatesNothing) {
+  for (const char* name : {"torus", "flat-torus", "s3"}) {
+    const test::Samples s = test::sample_manifold(name, 2000, 0.01);
+    for (PointCloudFunction function : {PointCloudFunction::blended, PointCloudFunction::nearest}) {
+      PointCloudOptions options;
+      options.function = function;
+      const PointCloudProblem p = make_point_cloud_problem(s.points, s.d, s.m, options);
+      std::vector<double> x(s.d), value(s.d);
+      const std::size_t before = allocations;
+      for (std::size_t i = 0; i < 1000; ++i) {
+        for (int t = 0; t < s.d; ++t) x[t] = s.points[i * s.d + t] * (1 + 0.05 * ((i % 7) - 3.0));  // near and far
+        p.function->evaluate(x.data(), value.data());
+        p.domain->evaluate(x.data(), value.data());
+      }
+      EXPECT_EQ(allocations - before, 0u) << name;
+    }
+  }
+}
+#endif
 
 TEST(PointCloud, GivenNormalsOrient) {
   test::Samples s = test::sample_manifold("sphere", 2000);
