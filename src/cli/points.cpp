@@ -57,7 +57,10 @@ void print_point_cloud(std::ostream& os, const LoadedPointCloud& pc) {
   const PointCloudDiagnostics& g = pc.problem.diagnostics;
   os << "  samples            " << pc.read << " read from " << pc.file << " (" << pc.format << ")";
   if (pc.duplicates) os << ", " << pc.duplicates << " exact duplicates removed";
-  os << "; " << g.components << (g.components == 1 ? " component" : " components") << " in the neighbour graph\n"
+  os << "; " << g.components << (g.components == 1 ? " component" : " components") << " in the neighbour graph";
+  if (g.isolated_samples) os << "; " << g.isolated_samples << " isolated samples (outliers?) not used as seeds";
+  if (g.unseeded_components) os << ", " << g.unseeded_components << " components made only of them not meshed";
+  os << "\n"
      << "  sample spacing     " << g.spacing << " (median nearest-neighbour distance); neighbourhood radius "
      << g.radius << " (" << static_cast<int>(g.mean_neighbours + 0.5) << " samples on average)\n"
      << "  edge length        " << g.edge_length << "; tube "
@@ -77,6 +80,8 @@ nlohmann::json point_cloud_json(const LoadedPointCloud& pc) {
                       {"duplicates_removed", pc.duplicates},
                       {"samples", g.samples},
                       {"components", g.components},
+                      {"isolated_samples", g.isolated_samples},
+                      {"unseeded_components", g.unseeded_components},
                       {"spacing", g.spacing},
                       {"thickness", g.thickness},
                       {"neighbourhood_radius", g.radius},

@@ -20,6 +20,9 @@ out=$("$bin" trace --points sphere.xyz)  # m defaults to d - 1; writes sphere.vt
 check "points default m" "1" "$(grep -c 'Betti numbers (Z/2) 1 0 1' <<<"$out")"
 check "points report spacing" "1" "$(grep -c 'sample spacing' <<<"$out")"
 check "points default output" "yes" "$([[ -s sphere.vtu ]] && echo yes || echo no)"
+printf '1.7 1.7 1.7\n-1.8 0.5 1.6\n' | cat sphere.xyz - > outliers.xyz
+out=$("$bin" trace --points outliers.xyz --no-output)
+check "points outliers" "1 1" "$(grep -c 'Betti numbers (Z/2) 1 0 1' <<<"$out") $(grep -c '2 isolated samples' <<<"$out")"
 json=$("$bin" trace --points sphere.xyz --pc-function nearest --tube 4 --edge-length 0.08 --json | tr -d ' \n')
 check "points nearest" "1" "$(grep -c '"betti":\[1,0,1\]' <<<"$json")"
 check "points edge length given" "1" "$(grep -c '"edge_length":0.08' <<<"$json")"

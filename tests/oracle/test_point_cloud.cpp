@@ -187,6 +187,18 @@ TEST(PointCloud, EvaluationAllocatesNothing) {
 }
 #endif
 
+TEST(PointCloud, OutliersAreNotSeeds) {
+  // 20 samples scattered in the box around a sphere: they must not seed little sheets of their own.
+  test::Samples s = test::sample_manifold("sphere", 2000, 0.01);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> box(-2, 2);
+  for (int i = 0; i < 20 * 3; ++i) s.points.push_back(box(rng));
+  const Outcome o = mesh(s.points, 3, 2);
+  EXPECT_EQ(o.topology.betti, (std::vector<std::size_t>{1, 0, 1}));
+  EXPECT_GE(o.diagnostics.isolated_samples, 15u);
+  EXPECT_LE(o.diagnostics.isolated_samples, 20u);
+}
+
 TEST(PointCloud, GivenNormalsOrient) {
   test::Samples s = test::sample_manifold("sphere", 2000);
   PointCloudOptions options;

@@ -75,6 +75,7 @@ SampleFrames estimate_frames(const SampleTree& tree, int m, const FrameOptions& 
   out.normals.resize(n * k * d);
   out.flatness.resize(n);
   out.thickness.resize(n);
+  out.within_radius.resize(n);
 
   // Neighbourhoods and local PCA.
   const int cap = std::max({options.max_neighbours, options.min_neighbours, 1}) + 1;  // the sample itself too
@@ -88,6 +89,7 @@ SampleFrames estimate_frames(const SampleTree& tree, int m, const FrameOptions& 
   for (std::size_t i = 0; i < n; ++i) {
     const double* p = tree.point(i);
     int count = tree.nearest_within(p, options.radius * options.radius, cap, nb.data(), nb_d2.data());
+    out.within_radius[i] = static_cast<std::uint16_t>(count - 1);
     if (count < options.min_neighbours + 1)
       count = tree.nearest_within(p, std::numeric_limits<double>::infinity(), options.min_neighbours + 1, nb.data(),
                                   nb_d2.data());

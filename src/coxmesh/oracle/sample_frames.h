@@ -27,6 +27,7 @@ struct SampleFrames {
   std::vector<double> normals;    ///< n × k × d: the k orthonormal normals of sample i, one row each
   std::vector<double> flatness;   ///< n: (sum of the k normal eigenvalues) / (trace) of the local covariance
   std::vector<double> thickness;  ///< n: RMS distance of the neighbourhood from its tangent plane (noise and curvature)
+  std::vector<std::uint16_t> within_radius;  ///< n: other samples within the radius (at most max_neighbours)
   std::vector<std::uint32_t> component;  ///< n: connected component of the neighbour graph (0, 1, … by first sample)
   std::uint32_t components = 0;
   std::size_t graph_edges = 0;       ///< edges of the (symmetrised) neighbour graph

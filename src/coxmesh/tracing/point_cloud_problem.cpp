@@ -13,8 +13,8 @@ namespace coxmesh {
 
 namespace {
 
-// Up to `count` samples of one component spread over it: farthest-point sampling from its
-// flattest sample (the best local plane), in a deterministic order.
+// Up to `count` of the given samples (one component's seedable ones) spread over them:
+// farthest-point sampling from the flattest (the best local plane), in a deterministic order.
 std::vector<std::uint32_t> spread_samples(const SampleTree& tree, const SampleFrames& fr,
                                           const std::vector<std::uint32_t>& members, int count) {
   const int d = tree.dimension();
@@ -126,12 +126,26 @@ PointCloudProblem make_point_cloud_problem(std::vector<double> samples, int d, i
   diag.tube_radius = options.tube * diag.edge_length;
   if (options.tube > 0) p.domain = tube_domain(model, diag.tube_radius);
 
-  // Seeds: samples spread over every component of the neighbour graph.
+  // Seeds: samples spread over every component of the neighbour graph, among those with at least
+  // m + 1 others within the radius (a plane's worth). Isolated samples (outliers) are joined to the
+  // graph by the minimum count, and farthest-point sampling would pick them first: the little
+  // sheets through them would be traced as extra components.
   std::vector<std::vector<std::uint32_t>> members(fr.components);
-  for (std::size_t i = 0; i < n; ++i) members[fr.component[i]].push_back(static_cast<std::uint32_t>(i));
-  for (const auto& component : members)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (fr.within_radius[i] >= m + 1) members[fr.component[i]].push_back(static_cast<std::uint32_t>(i));
+    else ++diag.isolated_samples;
+  }
+  for (const auto& component : members) {
+    if (component.empty()) {
+      ++diag.unseeded_components;
+      continue;
+    }
     for (std::uint32_t i : spread_samples(tree, fr, component, std::max(1, options.seeds_per_component)))
       p.seeds.emplace_back(tree.point(i), tree.point(i) + d);
+  }
+  if (p.seeds.empty())
+    throw InputError("no sample has " + std::to_string(m + 1) + " others within the neighbourhood radius " +
+                     std::to_string(diag.radius) + ": the samples are too sparse for it (give a larger radius)");
 
   // A box around the samples: the tube bounds the walk already; this also bounds it without one.
   const double margin = (options.tube > 0 ? diag.tube_radius : 10 * diag.radius) + 2 * diag.edge_length;
