@@ -88,6 +88,7 @@ nlohmann::json point_cloud_json(const LoadedPointCloud& pc) {
                       {"mean_neighbours", g.mean_neighbours},
                       {"edge_length", g.edge_length},
                       {"tube_radius", g.tube_radius},
+                      {"longest_gap", g.longest_gap},
                       {"function", g.blend_width > 0 ? "blended" : "nearest"},
                       {"blend_width", g.blend_width},
                       {"graph_edges", g.graph_edges},

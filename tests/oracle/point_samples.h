@@ -15,6 +15,7 @@ struct Samples {
   std::size_t size() const { return points.size() / d; }
 };
 
+/// "circle" (S¹ ⊂ R²), "trefoil" (the trefoil knot ⊂ R³: (sin t + 2 sin 2t, cos t − 2 cos 2t, −sin 3t)),
 /// "sphere" (S² ⊂ R³), "torus" (radii 1, 0.4, area-uniform), "flat-torus" (S¹ × S¹ ⊂ R⁴), "s3"
 /// (S³ ⊂ R⁴), "two-spheres" (unit spheres centred 3 apart), "patch" (the saddle z = 0.2(x² − y²)
 /// over the unit disc: a disc with boundary), "rp2" (the Veronese-type RP² ⊂ R⁴:
@@ -39,9 +40,17 @@ inline Samples sample_manifold(const std::string& name, std::size_t n, double no
   };
   if (name == "flat-torus" || name == "s3" || name == "rp2" || name == "klein") s.d = 4;
   if (name == "s3") s.m = 3;
+  if (name == "circle") s.d = 2;
+  if (name == "circle" || name == "trefoil") s.m = 1;
   for (std::size_t i = 0; i < n; ++i) {
     double x[4];
-    if (name == "sphere" || name == "two-spheres") {
+    if (name == "circle") {
+      const double t = 2 * pi * uniform(rng);
+      push({std::cos(t), std::sin(t)});
+    } else if (name == "trefoil") {
+      const double t = 2 * pi * uniform(rng);
+      push({std::sin(t) + 2 * std::sin(2 * t), std::cos(t) - 2 * std::cos(2 * t), -std::sin(3 * t)});
+    } else if (name == "sphere" || name == "two-spheres") {
       on_sphere(3, x);
       const double c = name == "two-spheres" && i % 2 ? 3.0 : 0.0;
       push({x[0] + c, x[1], x[2]});

@@ -131,6 +131,23 @@ SampleFrames estimate_frames(const SampleTree& tree, int m, const FrameOptions& 
   out.graph_edges = edges.size();
   std::sort(edges.begin(), edges.end());
 
+  // The largest gap: the longest edge of a Euclidean minimum spanning forest of the graph restricted
+  // to samples with at least m + 1 others within the radius (so that outliers do not count). M
+  // passes through such a gap at about half its length from every sample.
+  {
+    std::vector<Edge> by_length;
+    for (const Edge& e : edges)
+      if (out.within_radius[e.a] > m && out.within_radius[e.b] > m) {
+        double s = 0;
+        for (int t = 0; t < d; ++t) s += (tree.point(e.a)[t] - tree.point(e.b)[t]) * (tree.point(e.a)[t] - tree.point(e.b)[t]);
+        by_length.push_back({s, e.a, e.b});
+      }
+    std::sort(by_length.begin(), by_length.end());
+    UnionFind gaps(n);
+    for (const Edge& e : by_length)
+      if (gaps.unite(e.a, e.b)) out.longest_gap = std::max(out.longest_gap, std::sqrt(e.weight));
+  }
+
   // Kruskal: the minimum spanning forest, and the components.
   UnionFind uf(n);
   std::vector<std::vector<std::uint32_t>> tree_adjacent(n);

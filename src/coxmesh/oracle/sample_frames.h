@@ -34,6 +34,7 @@ struct SampleFrames {
   std::size_t compared_edges = 0;    ///< edges whose normal spaces are within 45°: their frames can be compared
   std::size_t frustrated_edges = 0;  ///< compared edges whose frames disagree: det(U_iᵀU_j) < 0 or a rotation > 60°
   double mean_neighbours = 0;        ///< samples per PCA neighbourhood, on average
+  double longest_gap = 0;  ///< longest edge of the Euclidean minimum spanning forest of the non-isolated samples
   const double* frame(std::size_t i) const { return normals.data() + i * k * d; }
 };
 

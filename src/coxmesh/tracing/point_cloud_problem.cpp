@@ -123,7 +123,10 @@ PointCloudProblem make_point_cloud_problem(std::vector<double> samples, int d, i
   p.function = options.function == PointCloudFunction::nearest ? nearest_frame_function(model)
                                                                : blended_frame_function(model, diag.blend_width);
   if (options.function == PointCloudFunction::nearest) diag.blend_width = 0;
-  diag.tube_radius = options.tube * diag.edge_length;
+  // The tube reaches at least 3/4 of the largest gap in the samples: M crosses a gap at half its
+  // length from the samples (random samples of a curve have gaps of ln(n) mean spacings).
+  diag.longest_gap = fr.longest_gap;
+  diag.tube_radius = options.tube > 0 ? std::max(options.tube * diag.edge_length, 0.75 * fr.longest_gap) : 0;
   if (options.tube > 0) p.domain = tube_domain(model, diag.tube_radius);
 
   // Seeds: samples spread over every component of the neighbour graph, among those with at least

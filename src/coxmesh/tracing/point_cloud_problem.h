@@ -25,7 +25,7 @@ struct PointCloudOptions {
   double radius = 0;  ///< PCA neighbourhood radius; 0: radius_factor × spacing
   double radius_factor = 5.0;
   int min_neighbours = 0;  ///< fewer samples within the radius: use this many nearest (0: 4(m + 1))
-  double tube = 3.0;       ///< tube radius in edge lengths (the domain); 0: no tube
+  double tube = 3.0;       ///< tube radius in edge lengths, at least 3/4 of the largest gap (the domain); 0: no tube
   PointCloudFunction function = PointCloudFunction::blended;
   /// w of the blended function; 0: blend_factor × max(spacing, thickness), so that it averages
   /// over the noise when the samples are noisier than they are dense.
@@ -42,6 +42,7 @@ struct PointCloudDiagnostics {
   double spacing = 0;    ///< median distance from a sample to its nearest other sample
   double thickness = 0;  ///< median RMS distance of a neighbourhood from its tangent plane: noise (and curvature)
   double radius = 0, edge_length = 0, tube_radius = 0, blend_width = 0;
+  double longest_gap = 0;  ///< longest edge of a Euclidean minimum spanning forest of the non-isolated samples
   double mean_neighbours = 0;    ///< samples per PCA neighbourhood
   std::uint32_t components = 0;  ///< connected components of the neighbour graph
   std::size_t isolated_samples = 0;    ///< samples with at most m others within the radius: never seeds
