@@ -237,10 +237,10 @@ fs::path cgal_data() {
   const char* env = std::getenv("COXMESH_CGAL_DATA");
   const fs::path archive = env ? env : "/usr/share/doc/libcgal-dev/data.tar.gz";
   if (!fs::exists(archive)) return {};
-  const fs::path dir = fs::current_path() / "cgal_data";
+  const fs::path dir = fs::path(COXMESH_TEST_BINARY_DIR) / "cgal_data";  // the build directory
   if (fs::exists(dir / "data/points_3/sphere_20k.xyz")) return dir / "data";
   // Extract to a private directory, then rename: tests running in parallel never see half a file.
-  const fs::path tmp = fs::current_path() / ("cgal_data.tmp." + std::to_string(::getpid()));
+  const fs::path tmp = dir.parent_path() / ("cgal_data.tmp." + std::to_string(::getpid()));
   fs::create_directories(tmp);
   const std::string cmd =
       "tar -xzf '" + archive.string() + "' -C '" + tmp.string() +
