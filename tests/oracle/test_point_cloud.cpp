@@ -245,9 +245,9 @@ fs::path cgal_data() {
   const std::string cmd =
       "tar -xzf '" + archive.string() + "' -C '" + tmp.string() +
       "' data/meshes/bunny00.off data/meshes/knot1.off data/points_3/kitten.xyz data/points_3/sphere_20k.xyz";
-  if (std::system(cmd.c_str()) != 0) {
+  if (std::system(cmd.c_str()) != 0) {  // the archive is there but unreadable or without the files: a failure
     fs::remove_all(tmp);
-    return {};
+    ADD_FAILURE() << "cannot extract the samples from " << archive;
   }
   std::error_code ec;
   fs::rename(tmp, dir, ec);
