@@ -113,7 +113,12 @@ SampleFrames estimate_frames(const SampleTree& tree, int m, const FrameOptions& 
     out.flatness[i] = normal_part / std::max(eig.eigenvalues().sum(), 1e-300);
     out.thickness[i] = std::sqrt(normal_part / count);
     for (int t = 0; t < d; ++t) out.centers[i * d + t] = mean[t];
-    const int graph = std::min(count, options.graph_neighbours + 1);
+    // The graph joins the nearest graph_neighbours whatever the radius: joined only within it,
+    // sparse stretches of a curve fell apart locally and the frames met again the long way round.
+    int graph = std::min(count, options.graph_neighbours + 1);
+    if (graph < options.graph_neighbours + 1)
+      graph = tree.nearest_within(p, std::numeric_limits<double>::infinity(), options.graph_neighbours + 1, nb.data(),
+                                  nb_d2.data());
     for (int j = 0; j < graph; ++j)
       if (nb[j] != i)
         edges.push_back({0.0, static_cast<std::uint32_t>(std::min<std::size_t>(i, nb[j])),

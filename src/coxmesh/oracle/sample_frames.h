@@ -14,7 +14,7 @@ struct FrameOptions {
   double radius = 0;          ///< neighbourhood radius (> 0)
   int min_neighbours = 8;     ///< fewer samples within the radius: the nearest min_neighbours instead
   int max_neighbours = 64;    ///< at most this many nearest samples within the radius go into the PCA
-  int graph_neighbours = 12;  ///< the nearest this many of them are joined in the neighbour graph
+  int graph_neighbours = 12;  ///< the nearest this many samples (within the radius or not) are joined in the graph
   /// Normals given with the samples (n × d, codimension 1 only; empty if none): they fix the sign
   /// of each estimated normal instead of the propagation along the tree.
   std::vector<double> reference_normals;
