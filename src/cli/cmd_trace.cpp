@@ -1,5 +1,5 @@
-// coxmesh trace: mesh a manifold given by a preset or by equations typed as text (thesis Ch. 4;
-// thesis §4.2), report its topology and write it to a file.
+// coxmesh trace: mesh a manifold given by a preset, by equations typed as text or by samples
+// (thesis Ch. 4), report its topology and write it to a file.
 #include <unistd.h>
 
 #include <algorithm>
@@ -7,6 +7,7 @@
 #include <cmath>
 #include <random>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 
@@ -22,6 +23,7 @@
 #include "coxmesh/oracle/presets.h"
 #include "coxmesh/tracing/seeds.h"
 #include "coxmesh/util/parallel_for.h"
+#include "points.h"
 #include "report.h"
 
 namespace coxmesh::cli {
@@ -45,6 +47,8 @@ struct TraceCliOptions {
   std::string output, format, project;
   std::vector<const CLI::Option*> preset_only;  // options that make no sense with --function
   const CLI::Option *function_given = nullptr, *dim_given = nullptr, *domain_center_given = nullptr;
+  PointCloudCliOptions points;            // --points FILE and its options (points.h)
+  const CLI::Option* m_option = nullptr;  // --m: also the manifold dimension of --points
 };
 
 using Clock = std::chrono::steady_clock;
@@ -98,7 +102,11 @@ void run(TraceCliOptions o) {
   double default_edge = 0, extent = 2.0;
   std::string name;
   const bool from_text = o.function_given->count() > 0;
-  if (from_text) {
+  const bool from_points = !o.points.file.empty();
+  if (from_points) {
+    for (const CLI::Option* opt : o.preset_only)
+      if (opt->count() && opt != o.m_option) throw InputError(opt->get_name() + " is a preset parameter; it does not apply to --points");
+  } else if (from_text) {
     for (const CLI::Option* opt : o.preset_only)
       if (opt->count()) throw InputError(opt->get_name() + " is a preset parameter; it does not apply to --function");
   } else {  // an option the preset does not read must not pass silently
@@ -112,10 +120,21 @@ void run(TraceCliOptions o) {
     }
   }
   if (o.domain_center_given->count() && !o.domain_ball) throw InputError("--domain-center needs --domain-ball");
-  if (!from_text && !o.center.empty()) o.params.center = parse_point(o.center, "--center");
-  std::function<std::pair<FunctionPtr, FunctionPtr>()> make_problem = [&o, from_text]() -> std::pair<FunctionPtr, FunctionPtr> {
+  // Samples: read and prepared once; their functions are thread-safe and shared by the workers.
+  std::optional<LoadedPointCloud> cloud;
+  if (from_points) {
+    cloud = load_point_cloud(o.points, o.m_option->count() ? std::optional<int>(o.params.m) : std::nullopt, o.params.dim,
+                             o.tri.edge_length);
+    if (cloud->problem.diagnostics.frames_inconsistent && !o.quiet)
+      std::cerr << "coxmesh: warning: " << cloud->problem.diagnostics.warning << "\n";
+  }
+  if (!from_text && !cloud && !o.center.empty()) o.params.center = parse_point(o.center, "--center");
+  std::function<std::pair<FunctionPtr, FunctionPtr>()> make_problem = [&o, &cloud, from_text]() -> std::pair<FunctionPtr, FunctionPtr> {
     FunctionPtr f, domain;
-    if (from_text) {
+    if (cloud) {
+      f = cloud->problem.function;
+      domain = cloud->problem.domain;
+    } else if (from_text) {
       f = expression_function(o.function, o.params.dim);
     } else {
       const Preset preset = make_preset(o.preset, o.params);
@@ -141,7 +160,10 @@ void run(TraceCliOptions o) {
     return {f, domain};
   };
   auto [f, domain] = make_problem();
-  if (from_text) {
+  if (cloud) {
+    default_edge = cloud->problem.edge_length;
+    name = o.points.file;
+  } else if (from_text) {
     name = "\"" + o.function + "\"";
   } else {
     const Preset preset = make_preset(o.preset, o.params);
@@ -153,7 +175,8 @@ void run(TraceCliOptions o) {
 
   // The output file is checked before the (possibly long) trace: format and projection spec.
   std::string output = o.output;
-  if (output.empty() && !o.no_output && !o.json) output = (from_text ? std::string("manifold") : o.preset) + ".vtu";
+  if (output.empty() && !o.no_output && !o.json)
+    output = (cloud ? std::filesystem::path(o.points.file).stem().string() : from_text ? std::string("manifold") : o.preset) + ".vtu";
   if (o.no_output && !o.output.empty()) throw InputError("--no-output contradicts -o " + o.output);
   const bool write = !output.empty();
   const MeshFormat format = !write ? MeshFormat::vtu : o.format.empty() ? format_of_path(output) : parse_format(o.format);
@@ -180,8 +203,10 @@ void run(TraceCliOptions o) {
       if (!(box.lo[i] < box.hi[i])) throw InputError("--box: lo must be below hi in every coordinate");
     search_box = box;
   }
+  if (cloud && o.box.empty()) search_box = cloud->problem.box;  // the samples' box, widened by the tube
   // The box bounds the walk as a domain (cells along it are closed): when given, and for equations
   // whose seeds are searched in the default box. Seeds given by hand: their whole components.
+  // (Samples are bounded by their tube.)
   const bool bounded_by_box = !o.box.empty() || (from_text && o.seeds.empty());
   if (bounded_by_box) {
     FunctionPtr box = box_domain(search_box);
@@ -207,7 +232,15 @@ void run(TraceCliOptions o) {
       throw InputError("--seed " + s + " has " + std::to_string(x.size()) + " coordinates, expected " + std::to_string(d));
     given.push_back(std::move(x));
   }
-  SeedChoice choice = choose_seeds(*f, domain.get(), given, o.auto_seed, search_box, t);
+  SeedChoice choice;
+  if (cloud) {  // samples spread over every component of the neighbour graph, and any given seeds
+    choice.seeds = std::move(given);
+    choice.seeds.insert(choice.seeds.end(), cloud->problem.seeds.begin(), cloud->problem.seeds.end());
+    choice.automatic = cloud->problem.seeds.size();
+    choice.skip_unusable = true;
+  } else {
+    choice = choose_seeds(*f, domain.get(), given, o.auto_seed, search_box, t);
+  }
   const std::vector<std::vector<double>>& seeds = choice.seeds;
   const std::size_t automatic = choice.automatic;
   options.skip_unusable_seeds = choice.skip_unusable;
@@ -261,12 +294,13 @@ void run(TraceCliOptions o) {
   const TopologyReport topo = analyze_topology(cc);
   const double topo_s = seconds_since(t2);
   // The exact rule meshes a perturbed level set where F = 0 is not a regular level: say so.
+  // (Samples have their own diagnostics.)
   std::vector<std::string> warnings;
-  if (singular_on(f_only, {cc.vertices.data(), cc.vertices.size()}, h))
+  if (!cloud && singular_on(f_only, {cc.vertices.data(), cc.vertices.size()}, h))
     warnings.push_back("F's differential is (nearly) singular on the traced set: 0 is not a regular value of F (F is a "
                        "square, F >= 0, or its equations are dependent there); what was meshed is a perturbed level set "
                        "near F = 0");
-  if (domain) {
+  if (domain && !cloud) {
     const ImplicitFunction* f_and_domain[] = {f.get(), domain.get()};
     if (singular_on(f_and_domain, {cc.boundary_vertices.data(), cc.boundary_vertices.size()}, h))
       warnings.push_back("the domain's boundary is tangent to the manifold along the cut (D = 0 contains M or touches "
@@ -281,7 +315,7 @@ void run(TraceCliOptions o) {
     if (progress) progress->phase("writing " + output);
     WriteOptions wo;
     wo.projection = o.project;
-    wo.native.source = from_text ? "function " + o.function : "preset " + o.preset;
+    wo.native.source = cloud ? "points " + o.points.file : from_text ? "function " + o.function : "preset " + o.preset;
     for (const std::string& text : o.domains) wo.native.source += "; domain " + text;
     if (o.domain_ball) wo.native.source += "; domain-ball " + std::to_string(*o.domain_ball);
     if (!o.cut.empty()) wo.native.source += "; cut " + o.cut;
@@ -301,7 +335,8 @@ void run(TraceCliOptions o) {
   std::ostream& out = output == "-" ? std::cerr : std::cout;
   if (o.json) {
     nlohmann::json j = topology_json(cc, topo);
-    if (from_text) j["function"] = o.function;
+    if (cloud) j["point_cloud"] = point_cloud_json(*cloud);
+    else if (from_text) j["function"] = o.function;
     else j["preset"] = o.preset;
     j["function_evaluations"] = evaluations;
     j["oracle_calls"] = oracle_calls;
@@ -320,8 +355,9 @@ void run(TraceCliOptions o) {
     out << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   } else if (!o.quiet) {
     out << name << ": " << cc.manifold_dimension << "-manifold in R^" << d << "\n";
+    if (cloud) print_point_cloud(out, *cloud);
     print_topology(out, cc, topo);
-    if (automatic) out << "  seeds              " << automatic << " found automatically in the box\n";
+    if (automatic) out << "  seeds              " << automatic << (cloud ? " samples" : " found automatically in the box") << "\n";
     out << "  F evaluations      " << evaluations << " (" << oracle_calls << " oracle calls)\n"
               << "  time               trace " << trace_s << " s ("
               << static_cast<long long>(cc.interior[0].size() / std::max(trace_s, 1e-9)) << " simplices/s), cell complex "
@@ -345,16 +381,20 @@ void register_trace(CLI::App& app, int& status) {
   CLI::App* cmd = app.add_subcommand("trace", "mesh a manifold: trace it through the ambient triangulation, report its "
                                               "topology and write it (default: the torus, to torus.vtu)");
   auto* preset = cmd->add_option("--preset", o->preset, "built-in manifold (see `coxmesh presets`)")->capture_default_str();
-  o->function_given = cmd->add_option("--function", o->function,
+  CLI::Option* function = cmd->add_option("--function", o->function,
                   "the manifold as equations \"e1; e2; ...\" = 0 in x1..xd (x,y,z,w when d <= 4), e.g. "
                   "\"x^2+y^2+z^2-1\"")
       ->excludes(preset);
-  o->preset_only.push_back(cmd->add_option("--m", o->params.m, "intrinsic dimension (sphere, plane)"));
+  o->function_given = function;
+  o->m_option = cmd->add_option("--m", o->params.m, "intrinsic dimension (sphere, plane; --points: default d-1)");
+  o->preset_only.push_back(o->m_option);
   o->dim_given = cmd->add_option("--dim", o->params.dim, "ambient dimension d (sphere, moment-curve, plane; --function when the "
                                           "variables do not show it)");
   o->preset_only.push_back(cmd->add_option("--radius", o->params.radius, "radius parameter of the preset"));
   o->preset_only.push_back(cmd->add_option("--minor-radius", o->params.minor_radius, "second radius (torus, flat-torus)"));
   o->preset_only.push_back(cmd->add_option("--center", o->center, "centre c1,...,cd (sphere, plane's domain)"));
+  o->points.add_to(*cmd);
+  o->points.option->excludes(preset)->excludes(function);
   o->tri.add_to(*cmd);
   cmd->add_option("--seed", o->seeds, "a point near the manifold (projected onto it); repeat for more")->take_all();
   cmd->add_flag("--auto-seed", o->auto_seed,

@@ -1,0 +1,103 @@
+// The point-cloud front end of `coxmesh trace`; see points.h and docs/point_clouds.md.
+#include "points.h"
+
+#include <chrono>
+
+#include "coxmesh/lattice/simplex.h"
+
+namespace coxmesh::cli {
+
+void PointCloudCliOptions::add_to(CLI::App& cmd) {
+  option = cmd.add_option("--points", file,
+                          "mesh the manifold sampled by the points of FILE (.xyz .txt .csv .off .ply .npy); give its "
+                          "dimension with --m (default d-1)")
+               ->type_name("FILE");
+  cmd.add_option(
+         "--pc-function", function,
+         "point clouds: blended (smooth, tolerates noise; default) or nearest (the frame of the nearest sample)")
+      ->check(CLI::IsMember({"blended", "nearest"}));
+  cmd.add_option("--neighbourhood", neighbourhood,
+                 "point clouds: radius of the neighbourhoods whose PCA gives the normals (default 5 sample spacings)");
+  cmd.add_option("--tube", tube,
+                 "point clouds: mesh only within T edge lengths of the samples (default 3; 0: no tube)");
+  cmd.add_option("--blend-width", blend_width,
+                 "point clouds: width of the blended function's Gaussian (default 2 spacings, more for noisy samples)");
+  cmd.add_flag("--use-normals", use_normals, "point clouds: orient by the normals in the file instead of propagating");
+}
+
+LoadedPointCloud load_point_cloud(const PointCloudCliOptions& o, std::optional<int> m, std::optional<int> dim,
+                                  std::optional<double> edge_length) {
+  const auto t0 = std::chrono::steady_clock::now();
+  PointReadOptions ro;
+  ro.dimension = dim.value_or(0);
+  PointSet set = read_points(o.file, ro);
+  LoadedPointCloud pc;
+  pc.file = o.file;
+  pc.duplicates = set.duplicates;
+  pc.read = set.size() + set.duplicates;
+  pc.format = set.format;
+  const int d = set.dimension;
+  const int mm = m.value_or(d - 1);
+  PointCloudOptions po;
+  if (edge_length) po.edge_length = *edge_length;
+  if (o.neighbourhood) po.radius = *o.neighbourhood;
+  if (o.tube) po.tube = *o.tube;
+  if (o.blend_width) po.blend_width = *o.blend_width;
+  po.function = o.function == "nearest" ? PointCloudFunction::nearest : PointCloudFunction::blended;
+  if (o.use_normals) {
+    if (set.normals.empty()) throw InputError("--use-normals: " + o.file + " has no normals");
+    po.normals = set.normals;
+  }
+  pc.problem = make_point_cloud_problem(std::move(set.points), d, mm, po);
+  pc.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return pc;
+}
+
+void print_point_cloud(std::ostream& os, const LoadedPointCloud& pc) {
+  const PointCloudDiagnostics& g = pc.problem.diagnostics;
+  os << "  samples            " << pc.read << " read from " << pc.file << " (" << pc.format << ")";
+  if (pc.duplicates) os << ", " << pc.duplicates << " exact duplicates removed";
+  os << "; " << g.components << (g.components == 1 ? " component" : " components") << " in the neighbour graph";
+  if (g.isolated_samples) os << "; " << g.isolated_samples << " isolated samples (outliers?) not used as seeds";
+  if (g.unseeded_components) os << ", " << g.unseeded_components << " components made only of them not meshed";
+  os << "\n"
+     << "  sample spacing     " << g.spacing << " (median nearest-neighbour distance); neighbourhood radius "
+     << g.radius << " (" << static_cast<int>(g.mean_neighbours + 0.5) << " samples on average)\n"
+     << "  edge length        " << g.edge_length << "; tube "
+     << (g.tube_radius > 0 ? std::to_string(g.tube_radius) : "none") << "; function "
+     << (g.blend_width > 0 ? "blended (width " + std::to_string(g.blend_width) + ")" : "nearest frame") << "\n"
+     << "  frames             " << g.frustrated_edges << " of " << g.compared_edges
+     << " compared neighbour-graph edges frustrated" << (g.used_given_normals ? " (normals from the file)" : "")
+     << "; samples read and prepared in " << pc.seconds << " s\n";
+  if (g.frames_inconsistent) os << "  warning: " << g.warning << "\n";
+}
+
+nlohmann::json point_cloud_json(const LoadedPointCloud& pc) {
+  const PointCloudDiagnostics& g = pc.problem.diagnostics;
+  nlohmann::json j = {{"file", pc.file},
+                      {"format", pc.format},
+                      {"samples_read", pc.read},
+                      {"duplicates_removed", pc.duplicates},
+                      {"samples", g.samples},
+                      {"components", g.components},
+                      {"isolated_samples", g.isolated_samples},
+                      {"unseeded_components", g.unseeded_components},
+                      {"spacing", g.spacing},
+                      {"thickness", g.thickness},
+                      {"neighbourhood_radius", g.radius},
+                      {"mean_neighbours", g.mean_neighbours},
+                      {"edge_length", g.edge_length},
+                      {"tube_radius", g.tube_radius},
+                      {"longest_gap", g.longest_gap},
+                      {"function", g.blend_width > 0 ? "blended" : "nearest"},
+                      {"blend_width", g.blend_width},
+                      {"graph_edges", g.graph_edges},
+                      {"compared_edges", g.compared_edges},
+                      {"frustrated_edges", g.frustrated_edges},
+                      {"frames_consistent", !g.frames_inconsistent},
+                      {"setup_seconds", pc.seconds}};
+  if (g.frames_inconsistent) j["warning"] = g.warning;
+  return j;
+}
+
+}  // namespace coxmesh::cli

@@ -1,0 +1,45 @@
+// `coxmesh trace --points FILE`: the point-cloud front end (thesis Ch. 4). Reads the samples, builds
+// the problem (function, tube domain, seeds, edge length) and reports what it chose and found, so
+// that cmd_trace.cpp only has to plug the function into its usual pipeline.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <ostream>
+#include <string>
+
+#include "coxmesh/io/point_reader.h"
+#include "coxmesh/tracing/point_cloud_problem.h"
+
+namespace coxmesh::cli {
+
+struct PointCloudCliOptions {
+  std::string file;
+  std::string function = "blended";
+  std::optional<double> neighbourhood, tube, blend_width;
+  bool use_normals = false;
+  CLI::Option* option = nullptr;  // --points itself (for excludes)
+
+  void add_to(CLI::App& cmd);
+};
+
+struct LoadedPointCloud {
+  std::string file;
+  std::size_t read = 0, duplicates = 0;
+  std::string format;
+  double seconds = 0;  ///< reading and preparing (tree, frames, seeds)
+  PointCloudProblem problem;
+};
+
+/// Reads and prepares the samples. m: the manifold dimension (default d − 1); dim: the expected
+/// d (optional); edge_length: the user's --edge-length (optional). Throws InputError.
+LoadedPointCloud load_point_cloud(const PointCloudCliOptions& o, std::optional<int> m, std::optional<int> dim,
+                                  std::optional<double> edge_length);
+
+/// The human lines of the trace summary (indented by two spaces), the warning included.
+void print_point_cloud(std::ostream& os, const LoadedPointCloud& pc);
+/// The "point_cloud" object of the JSON summary.
+nlohmann::json point_cloud_json(const LoadedPointCloud& pc);
+
+}  // namespace coxmesh::cli

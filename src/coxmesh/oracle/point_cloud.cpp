@@ -1,0 +1,119 @@
+// The point-cloud functions (nearest frame, blended frames) and the tube domain.
+#include "coxmesh/oracle/point_cloud.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "coxmesh/lattice/simplex.h"
+
+namespace coxmesh {
+
+namespace {
+
+class NearestFrameFunction final : public ImplicitFunction {
+ public:
+  explicit NearestFrameFunction(std::shared_ptr<const SampleModel> model) : model_(std::move(model)) {}
+  int ambient_dimension() const override { return model_->frames.d; }
+  int codimension() const override { return model_->frames.k; }
+  void evaluate(const double* x, double* value) const override {
+    const SampleFrames& fr = model_->frames;
+    double d2;
+    const std::uint32_t q = model_->tree->nearest(x, &d2);
+    const double* c = fr.centers.data() + static_cast<std::size_t>(q) * fr.d;
+    const double* u = fr.frame(q);
+    for (int j = 0; j < fr.k; ++j) {
+      double s = 0;
+      for (int t = 0; t < fr.d; ++t) s += u[j * fr.d + t] * (x[t] - c[t]);
+      value[j] = s;
+    }
+  }
+
+ private:
+  std::shared_ptr<const SampleModel> model_;
+};
+
+class BlendedFrameFunction final : public ImplicitFunction {
+ public:
+  BlendedFrameFunction(std::shared_ptr<const SampleModel> model, double width)
+      : model_(std::move(model)), inv_w2_(1 / (width * width)), reach2_(9 * width * width) {}
+  int ambient_dimension() const override { return model_->frames.d; }
+  int codimension() const override { return model_->frames.k; }
+  void evaluate(const double* x, double* value) const override {
+    const SampleFrames& fr = model_->frames;
+    const SampleTree& tree = *model_->tree;
+    std::array<std::uint32_t, kBlend> index;
+    std::array<double, kBlend> d2;
+    int count = tree.nearest_within(x, reach2_, kBlend, index.data(), d2.data());
+    if (count == 0) count = tree.nearest_within(x, std::numeric_limits<double>::infinity(), 1, index.data(), d2.data());
+    std::array<double, kMaxDimension> sum{};
+    double total = 0;
+    for (int i = 0; i < count; ++i) {
+      // Weights relative to the nearest sample's: the same ratios, and no underflow far away.
+      const double theta = std::exp(-(d2[i] - d2[0]) * inv_w2_);
+      const double* p = tree.point(index[i]);
+      const double* u = fr.frame(index[i]);
+      for (int j = 0; j < fr.k; ++j) {
+        double s = 0;
+        for (int t = 0; t < fr.d; ++t) s += u[j * fr.d + t] * (x[t] - p[t]);
+        sum[j] += theta * s;
+      }
+      total += theta;
+    }
+    for (int j = 0; j < fr.k; ++j) value[j] = sum[j] / total;
+  }
+
+ private:
+  static constexpr int kBlend = 32;
+  std::shared_ptr<const SampleModel> model_;
+  double inv_w2_, reach2_;
+};
+
+class TubeDomain final : public ImplicitFunction {
+ public:
+  TubeDomain(std::shared_ptr<const SampleModel> model, double radius) : model_(std::move(model)), radius_(radius) {}
+  int ambient_dimension() const override { return model_->tree->dimension(); }
+  int codimension() const override { return 1; }
+  void evaluate(const double* x, double* value) const override {
+    double d2;
+    model_->tree->nearest(x, &d2);
+    value[0] = std::sqrt(d2) - radius_;
+  }
+
+ private:
+  std::shared_ptr<const SampleModel> model_;
+  double radius_;
+};
+
+}  // namespace
+
+FunctionPtr nearest_frame_function(std::shared_ptr<const SampleModel> model) {
+  return std::make_shared<NearestFrameFunction>(std::move(model));
+}
+
+FunctionPtr blended_frame_function(std::shared_ptr<const SampleModel> model, double width) {
+  if (!(width > 0) || !std::isfinite(width)) throw InputError("the blending width must be positive");
+  return std::make_shared<BlendedFrameFunction>(std::move(model), width);
+}
+
+FunctionPtr tube_domain(std::shared_ptr<const SampleModel> model, double radius) {
+  if (!(radius > 0) || !std::isfinite(radius)) throw InputError("the tube radius must be positive");
+  return std::make_shared<TubeDomain>(std::move(model), radius);
+}
+
+double median_spacing(const SampleTree& tree) {
+  const std::size_t n = tree.size();
+  if (n < 2) return 0;
+  std::vector<double> nearest(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::array<std::uint32_t, 2> index;
+    std::array<double, 2> d2;
+    tree.nearest_within(tree.point(i), std::numeric_limits<double>::infinity(), 2, index.data(), d2.data());
+    nearest[i] = d2[1];  // d2[0] = 0: the sample itself
+  }
+  std::nth_element(nearest.begin(), nearest.begin() + n / 2, nearest.end());
+  return std::sqrt(nearest[n / 2]);
+}
+
+}  // namespace coxmesh

@@ -1,0 +1,42 @@
+// A kd-tree over the samples of a point cloud (nanoflann), for the point-cloud oracle: the nearest
+// sample of a point, and the nearest samples within a radius. Queries allocate nothing (d ≤ 10).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace coxmesh {
+
+/// Samples of R^d (n × d, row-major) and their kd-tree. Immutable after construction; queries are
+/// const and may run concurrently from any number of threads.
+class SampleTree {
+ public:
+  /// Largest d for which queries use fixed-size buffers (above it nanoflann allocates per query).
+  static constexpr int kFixedMaxDimension = 10;
+
+  SampleTree(std::vector<double> points, int d);
+  ~SampleTree();
+  SampleTree(const SampleTree&) = delete;
+  SampleTree& operator=(const SampleTree&) = delete;
+
+  int dimension() const { return d_; }
+  std::size_t size() const { return points_.size() / d_; }
+  const double* point(std::size_t i) const { return points_.data() + i * d_; }
+  const std::vector<double>& points() const { return points_; }
+
+  /// The nearest sample to x: its index, and the squared distance in *distance2.
+  std::uint32_t nearest(const double* x, double* distance2) const;
+  /// The (at most `capacity`) nearest samples at squared distance < radius2, nearest first:
+  /// index[0..r), distance2[0..r); returns r. The arrays hold `capacity` entries.
+  int nearest_within(const double* x, double radius2, int capacity, std::uint32_t* index, double* distance2) const;
+
+  struct Index;  // the nanoflann index for this d (fixed-size buffers when d ≤ kFixedMaxDimension)
+
+ private:
+  std::vector<double> points_;
+  int d_;
+  std::unique_ptr<const Index> index_;
+};
+
+}  // namespace coxmesh

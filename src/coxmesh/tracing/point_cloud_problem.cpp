@@ -1,0 +1,165 @@
+// The point-cloud problem: defaults from the sample spacing, frames and their diagnostics, the
+// function, the tube, seeds on every component, a box.
+#include "coxmesh/tracing/point_cloud_problem.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "coxmesh/lattice/simplex.h"
+
+namespace coxmesh {
+
+namespace {
+
+// Up to `count` of the given samples (one component's seedable ones) spread over them:
+// farthest-point sampling from the flattest (the best local plane), in a deterministic order.
+std::vector<std::uint32_t> spread_samples(const SampleTree& tree, const SampleFrames& fr,
+                                          const std::vector<std::uint32_t>& members, int count) {
+  const int d = tree.dimension();
+  std::uint32_t first = members[0];
+  for (std::uint32_t i : members)
+    if (fr.flatness[i] < fr.flatness[first]) first = i;
+  std::vector<std::uint32_t> chosen{first};
+  std::vector<double> dist(members.size(), std::numeric_limits<double>::infinity());
+  while (static_cast<int>(chosen.size()) < count && chosen.size() < members.size()) {
+    const double* c = tree.point(chosen.back());
+    std::size_t best = 0;
+    for (std::size_t j = 0; j < members.size(); ++j) {
+      const double* p = tree.point(members[j]);
+      double s = 0;
+      for (int t = 0; t < d; ++t) s += (p[t] - c[t]) * (p[t] - c[t]);
+      dist[j] = std::min(dist[j], s);
+      if (dist[j] > dist[best]) best = j;
+    }
+    if (!(dist[best] > 0)) break;
+    chosen.push_back(members[best]);
+  }
+  return chosen;
+}
+
+std::string percent(double x) {
+  std::ostringstream s;
+  s.precision(2);
+  s << std::fixed << 100 * x << " %";
+  return s.str();
+}
+
+}  // namespace
+
+PointCloudProblem make_point_cloud_problem(std::vector<double> samples, int d, int m,
+                                           const PointCloudOptions& options) {
+  check_dimension(d);
+  if (m < 1 || m >= d)
+    throw InputError("the manifold dimension m must be between 1 and d − 1 = " + std::to_string(d - 1) +
+                     " for samples of R^" + std::to_string(d));
+  if (samples.size() % d != 0) throw InputError("the sample array is not n × d");
+  const std::size_t n = samples.size() / d;
+  if (n < static_cast<std::size_t>(m) + 2)
+    throw InputError(std::to_string(n) + (n == 1 ? " sample is" : " samples are") + " too few for a " +
+                     std::to_string(m) + "-manifold (at least m + 2 = " + std::to_string(m + 2) + ")");
+  for (double v : samples)
+    if (!std::isfinite(v)) throw InputError("the samples contain NaN or infinite coordinates");
+  auto positive_or_zero = [](double v, const char* what) {
+    if (!(v >= 0) || !std::isfinite(v)) throw InputError(std::string(what) + " must be positive");
+  };
+  positive_or_zero(options.edge_length, "the edge length");
+  positive_or_zero(options.radius, "the neighbourhood radius");
+  positive_or_zero(options.tube, "the tube radius");
+  positive_or_zero(options.blend_width, "the blending width");
+  if (!(options.edge_factor >= 0) || !(options.radius_factor > 0) || !(options.blend_factor > 0))
+    throw InputError("the scale factors must be positive");
+
+  PointCloudProblem p;
+  auto model = std::make_shared<SampleModel>();
+  model->tree = std::make_unique<SampleTree>(std::move(samples), d);
+  const SampleTree& tree = *model->tree;
+  PointCloudDiagnostics& diag = p.diagnostics;
+  diag.samples = n;
+  diag.ambient_dimension = d;
+  diag.manifold_dimension = m;
+  diag.spacing = median_spacing(tree);
+  if (!(diag.spacing > 0)) throw InputError("the samples coincide: no spacing to scale the mesh by");
+  diag.radius = options.radius > 0 ? options.radius : options.radius_factor * diag.spacing;
+
+  FrameOptions fo;
+  fo.radius = diag.radius;
+  fo.min_neighbours = options.min_neighbours > 0 ? options.min_neighbours : 4 * (m + 1);
+  fo.max_neighbours = std::max(64, fo.min_neighbours);
+  fo.reference_normals = options.normals;
+  diag.used_given_normals = !options.normals.empty();
+  model->frames = estimate_frames(tree, m, fo);
+  const SampleFrames& fr = model->frames;
+  diag.mean_neighbours = fr.mean_neighbours;
+  diag.components = fr.components;
+  diag.graph_edges = fr.graph_edges;
+  diag.compared_edges = fr.compared_edges;
+  diag.frustrated_edges = fr.frustrated_edges;
+  std::vector<double> thickness = fr.thickness;
+  std::nth_element(thickness.begin(), thickness.begin() + n / 2, thickness.end());
+  diag.thickness = thickness[n / 2];
+  const double edge_factor = options.edge_factor > 0 ? options.edge_factor : m <= 2 ? 2.0 : 2.0 * (m - 1);
+  diag.edge_length = options.edge_length > 0 ? options.edge_length : edge_factor * diag.spacing;
+  // Orientable manifolds give no frustrated edges but a few isolated ones at sharp features or in
+  // noise; a non-orientable one gives a seam of them across the manifold, whose edge count grows
+  // like n^((m-1)/m), at least √n for m ≥ 2 (RP² ⊂ R⁴: 5-6 √E from 2,000 to 50,000 samples).
+  diag.frames_inconsistent = fr.frustrated_edges > std::max(8.0, std::sqrt(static_cast<double>(fr.compared_edges)));
+  if (diag.frames_inconsistent) {
+    std::ostringstream w;
+    w << fr.frustrated_edges << " of " << fr.compared_edges << " neighbour-graph edges ("
+      << percent(static_cast<double>(fr.frustrated_edges) / std::max<std::size_t>(fr.compared_edges, 1))
+      << ") join samples whose normal " << (fr.k == 1 ? "directions" : "frames")
+      << " cannot be made consistent: the manifold looks non-orientable (like RP^2 or the Klein bottle in R^4, "
+         "which no function R^d -> R^k can represent), or the samples are too sparse or noisy for their normals; "
+         "the traced topology cannot be trusted";
+    diag.warning = w.str();
+  }
+
+  p.model = model;
+  p.edge_length = diag.edge_length;
+  diag.blend_width =
+      options.blend_width > 0 ? options.blend_width : options.blend_factor * std::max(diag.spacing, diag.thickness);
+  p.function = options.function == PointCloudFunction::nearest ? nearest_frame_function(model)
+                                                               : blended_frame_function(model, diag.blend_width);
+  if (options.function == PointCloudFunction::nearest) diag.blend_width = 0;
+  // The tube reaches at least 3/4 of the largest gap in the samples: M crosses a gap at half its
+  // length from the samples (random samples of a curve have gaps of ln(n) mean spacings).
+  diag.longest_gap = fr.longest_gap;
+  diag.tube_radius = options.tube > 0 ? std::max(options.tube * diag.edge_length, 0.75 * fr.longest_gap) : 0;
+  if (options.tube > 0) p.domain = tube_domain(model, diag.tube_radius);
+
+  // Seeds: samples spread over every component of the neighbour graph, among those with at least
+  // m + 1 others within the radius (a plane's worth). Isolated samples (outliers) are joined to the
+  // graph by the minimum count, and farthest-point sampling would pick them first: the little
+  // sheets through them would be traced as extra components.
+  std::vector<std::vector<std::uint32_t>> members(fr.components);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (fr.within_radius[i] >= m + 1) members[fr.component[i]].push_back(static_cast<std::uint32_t>(i));
+    else ++diag.isolated_samples;
+  }
+  for (const auto& component : members) {
+    if (component.empty()) {
+      ++diag.unseeded_components;
+      continue;
+    }
+    for (std::uint32_t i : spread_samples(tree, fr, component, std::max(1, options.seeds_per_component)))
+      p.seeds.emplace_back(tree.point(i), tree.point(i) + d);
+  }
+  if (p.seeds.empty())
+    throw InputError("no sample has " + std::to_string(m + 1) + " others within the neighbourhood radius " +
+                     std::to_string(diag.radius) + ": the samples are too sparse for it (give a larger radius)");
+
+  // A box around the samples: the tube bounds the walk already; this also bounds it without one.
+  const double margin = (options.tube > 0 ? diag.tube_radius : 10 * diag.radius) + 2 * diag.edge_length;
+  p.box.lo.assign(d, std::numeric_limits<double>::infinity());
+  p.box.hi.assign(d, -std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; i < n; ++i)
+    for (int t = 0; t < d; ++t) {
+      p.box.lo[t] = std::min(p.box.lo[t], tree.point(i)[t] - margin);
+      p.box.hi[t] = std::max(p.box.hi[t], tree.point(i)[t] + margin);
+    }
+  return p;
+}
+
+}  // namespace coxmesh

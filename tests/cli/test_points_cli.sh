@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# End-to-end tests of `coxmesh trace --points` ($COXMESH): topology of sampled manifolds, the
+# report, the non-orientability warning, and bad input.
+set -euo pipefail
+source "$(dirname "$0")/lib.sh"
+cd "$tmp"
+
+# Deterministic samples: n points of a Fibonacci spiral on the unit sphere, and their image under
+# (x,y,z) -> (xy, xz, y^2 - z^2, 2yz), a projective plane in R^4.
+awk 'BEGIN { n = 2000; g = 3.14159265358979 * (3 - sqrt(5));
+  for (i = 0; i < n; i++) { z = 1 - 2 * (i + 0.5) / n; r = sqrt(1 - z * z); printf "%.12g %.12g %.12g\n", r * cos(i * g), r * sin(i * g), z } }' > sphere.xyz
+awk '{ printf "%.12g %.12g %.12g %.12g\n", $1 * $2, $1 * $3, $2 * $2 - $3 * $3, 2 * $2 * $3 }' sphere.xyz > rp2.txt
+
+json=$("$bin" trace --points sphere.xyz --m 2 --json | tr -d ' \n')
+check "points sphere betti" "1" "$(grep -c '"betti":\[1,0,1\]' <<<"$json")"
+check "points sphere manifold" "1" "$(grep -c '"is_manifold":true' <<<"$json")"
+check "points sphere frames" "1" "$(grep -c '"frames_consistent":true' <<<"$json")"
+check "points sphere samples" "1" "$(grep -c '"samples":2000' <<<"$json")"
+out=$("$bin" trace --points sphere.xyz)  # m defaults to d - 1; writes sphere.vtu
+check "points default m" "1" "$(grep -c 'Betti numbers (Z/2) 1 0 1' <<<"$out")"
+check "points report spacing" "1" "$(grep -c 'sample spacing' <<<"$out")"
+check "points default output" "yes" "$([[ -s sphere.vtu ]] && echo yes || echo no)"
+printf '1.7 1.7 1.7\n-1.8 0.5 1.6\n' | cat sphere.xyz - > outliers.xyz
+out=$("$bin" trace --points outliers.xyz --no-output)
+check "points outliers" "1 1" "$(grep -c 'Betti numbers (Z/2) 1 0 1' <<<"$out") $(grep -c '2 isolated samples' <<<"$out")"
+json=$("$bin" trace --points sphere.xyz --pc-function nearest --tube 4 --edge-length 0.08 --json | tr -d ' \n')
+check "points nearest" "1" "$(grep -c '"betti":\[1,0,1\]' <<<"$json")"
+check "points edge length given" "1" "$(grep -c '"edge_length":0.08' <<<"$json")"
+(cat sphere.xyz; head -5 sphere.xyz) > dup.xyz
+check "points duplicates" "1" "$("$bin" trace --points dup.xyz --no-output | grep -c '5 exact duplicates removed')"
+
+# RP^2 in R^4 is not orientable: a warning on stderr, and the JSON says so.
+err=$("$bin" trace --points rp2.txt --m 2 --no-output 2>&1 >/dev/null)
+check "rp2 warning" "1" "$(grep -c '^coxmesh: warning: .*frustrated\|^coxmesh: warning: .*cannot be trusted' <<<"$err")"
+json=$("$bin" trace --points rp2.txt --m 2 --json 2>/dev/null | tr -d ' \n')
+check "rp2 json" "1" "$(grep -c '"frames_consistent":false' <<<"$json")"
+
+# Bad input: one line, non-zero exit.
+printf '0 0 0\n1 nan 0\n' > nan.xyz
+fails_with "points NaN" "NaN" "$bin" trace --points nan.xyz --no-output
+fails_with "points extension" "unknown point file extension" "$bin" trace --points sphere.las --no-output
+mkdir folder.xyz
+fails_with "points directory" "is a directory" "$bin" trace --points folder.xyz --no-output
+fails_with "points missing" "cannot open" "$bin" trace --points none.xyz --no-output
+fails_with "points m too big" "between 1 and d" "$bin" trace --points sphere.xyz --m 3 --no-output
+fails_with "points preset parameter" "does not apply to --points" "$bin" trace --points sphere.xyz --radius 2 --no-output
+fails_with "points no normals" "has no normals" "$bin" trace --points sphere.xyz --use-normals --no-output
+fails_with "points wrong dim" "expected R^4" "$bin" trace --points sphere.xyz --dim 4 --no-output
+head -3 sphere.xyz > three.xyz
+fails_with "points too few" "too few for a 2-manifold" "$bin" trace --points three.xyz --no-output
+printf 'x,y,z\n1,2,3\n4,5\n' > ragged.csv
+fails_with "points ragged csv" "line 3 has 2 numbers, line 2 has 3" "$bin" trace --points ragged.csv --no-output
+err=$("$bin" trace --points sphere.xyz --function x --no-output 2>&1) && status=0 || status=$?
+check "points excludes function" "1 1" "$([[ $status -ne 0 ]] && echo 1) $(grep -c 'excludes' <<<"$err")"
+finish

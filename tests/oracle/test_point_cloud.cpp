@@ -1,0 +1,274 @@
+// Point clouds (thesis Ch. 4): samples of known manifolds, clean and noisy, traced through the
+// point-cloud function and tube; the Z/2 Betti numbers and the manifold check must come out right,
+// a non-orientable RP² ⊂ R⁴ must be flagged, and real samples nobody here made (CGAL's data) must
+// give their known topology with the default parameters.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <filesystem>
+#include <new>
+
+#include "coxmesh/cell_complex/cell_complex.h"
+#include "coxmesh/cell_complex/topology.h"
+#include "coxmesh/io/point_reader.h"
+#include "coxmesh/oracle/implicit_oracle.h"
+#include "coxmesh/tracing/point_cloud_problem.h"
+#include "point_samples.h"
+
+using namespace coxmesh;
+namespace fs = std::filesystem;
+
+// Every allocation of this test program is counted: the point-cloud functions must not allocate
+// when evaluated (they are called once per lattice vertex, millions of times). Not with
+// AddressSanitizer, which has its own operator new.
+#ifndef __SANITIZE_ADDRESS__
+static std::atomic<std::size_t> allocations{0};
+// (Not inlined: GCC would otherwise pair the malloc and free across the replacement operators.)
+[[gnu::noinline]] void* operator new(std::size_t size) {
+  ++allocations;
+  if (void* p = std::malloc(size ? size : 1)) return p;
+  throw std::bad_alloc();
+}
+[[gnu::noinline]] void operator delete(void* p) noexcept { std::free(p); }
+[[gnu::noinline]] void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#endif
+
+namespace {
+
+struct Outcome {
+  PointCloudDiagnostics diagnostics;
+  TopologyReport topology;
+  std::size_t simplices = 0;
+  TraceStatus status = TraceStatus::complete;
+};
+
+Outcome mesh(std::vector<double> points, int d, int m, const PointCloudOptions& options = {}, int threads = 1) {
+  PointCloudProblem p = make_point_cloud_problem(std::move(points), d, m, options);
+  const Triangulation t = Triangulation::coxeter(d).with_longest_edge(p.edge_length);
+  TraceOptions to;
+  to.skip_unusable_seeds = true;
+  to.threads = threads;
+  auto shared = threads > 1 ? ImplicitOracle::make_shared_values(t, p.function, p.domain) : nullptr;
+  TraceResult r = trace_manifold(
+      t, [&] { return std::make_unique<ImplicitOracle>(t, p.function, p.domain, shared); }, p.seeds, to);
+  Outcome out;
+  out.status = r.status;
+  out.simplices = r.simplices.size();
+  out.diagnostics = p.diagnostics;
+  out.topology = analyze_topology(build_cell_complex(std::move(r)));
+  return out;
+}
+
+struct Case {
+  const char* name;
+  std::size_t n;
+  std::vector<std::size_t> betti;
+};
+
+void PrintTo(const Case& c, std::ostream* os) { *os << c.name << " (" << c.n << " samples)"; }
+
+class Synthetic : public ::testing::TestWithParam<std::tuple<Case, double, PointCloudFunction>> {};
+
+TEST_P(Synthetic, RightTopology) {
+  const auto& [c, noise, function] = GetParam();
+  const test::Samples s = test::sample_manifold(c.name, c.n, noise);
+  PointCloudOptions options;
+  options.function = function;
+  const Outcome o = mesh(s.points, s.d, s.m, options);
+  EXPECT_EQ(o.status, TraceStatus::complete);
+  EXPECT_TRUE(o.topology.is_manifold) << o.topology.manifold_problem;
+  EXPECT_EQ(o.topology.betti, c.betti);
+  EXPECT_FALSE(o.diagnostics.frames_inconsistent) << o.diagnostics.warning;
+  // (Around a closed space curve the frames carried along the tree meet again turned by the
+  // holonomy of the normal bundle: a few edges there are frustrated, far fewer than flag it.)
+  if (s.m >= 2 || s.d == 2) {
+    EXPECT_EQ(o.diagnostics.frustrated_edges, 0u);
+  }
+  const bool with_boundary = std::string(c.name) == "patch";
+  const bool has_boundary = !o.topology.boundary_cells.empty() && o.topology.boundary_cells[0] > 0;
+  EXPECT_EQ(has_boundary, with_boundary);
+}
+
+// Noise 0.01 in every coordinate: about 1/4 of the sample spacing for surfaces (1/7 for S³, 2/3 for
+// the trefoil knot, 1 for the circle; random samples of a curve also have gaps of ln(n) mean
+// spacings, which the tube must span).
+INSTANTIATE_TEST_SUITE_P(
+    PointClouds, Synthetic,
+    ::testing::Combine(::testing::Values(Case{"circle", 500, {1, 1}}, Case{"trefoil", 2000, {1, 1}},
+                                         Case{"sphere", 2000, {1, 0, 1}}, Case{"torus", 2000, {1, 2, 1}},
+                                         Case{"flat-torus", 2000, {1, 2, 1}}, Case{"s3", 2000, {1, 0, 0, 1}},
+                                         Case{"two-spheres", 2000, {2, 0, 2}}, Case{"patch", 2000, {1, 0, 0}}),
+                       ::testing::Values(0.0, 0.01), ::testing::Values(PointCloudFunction::blended)),
+    [](const auto& info) {
+      std::string name = std::get<0>(info.param).name;
+      for (char& ch : name)
+        if (ch == '-') ch = '_';
+      return name + (std::get<1>(info.param) > 0 ? "_noisy" : "_clean");
+    });
+
+// The nearest-frame function on a few of them, and the denser noisy torus where both must hold.
+INSTANTIATE_TEST_SUITE_P(Nearest, Synthetic,
+                         ::testing::Combine(::testing::Values(Case{"sphere", 2000, {1, 0, 1}},
+                                                              Case{"torus", 4000, {1, 2, 1}},
+                                                              Case{"flat-torus", 2000, {1, 2, 1}}),
+                                            ::testing::Values(0.0, 0.01),
+                                            ::testing::Values(PointCloudFunction::nearest)),
+                         [](const auto& info) {
+                           std::string name = std::get<0>(info.param).name;
+                           for (char& ch : name)
+                             if (ch == '-') ch = '_';
+                           return name + (std::get<1>(info.param) > 0 ? "_noisy" : "_clean");
+                         });
+
+TEST(PointCloud, NonOrientableIsFlagged) {
+  // RP² and the Klein bottle in R⁴ are not orientable: no single-valued function R⁴ → R² has
+  // them as its zero set (the zero set of such a function is orientable). The frames must say so,
+  // clean or noisy.
+  for (const char* name : {"rp2", "klein"}) {
+    for (double noise : {0.0, 0.01}) {
+      const test::Samples s = test::sample_manifold(name, 3000, noise);
+      const Outcome o = mesh(s.points, s.d, s.m);
+      EXPECT_TRUE(o.diagnostics.frames_inconsistent) << name << " " << noise;
+      EXPECT_GT(o.diagnostics.frustrated_edges, o.diagnostics.compared_edges / 100);
+      EXPECT_NE(o.diagnostics.warning.find("cannot be trusted"), std::string::npos);
+      EXPECT_NE(o.diagnostics.warning.find(std::to_string(o.diagnostics.frustrated_edges)), std::string::npos);
+      EXPECT_TRUE(o.topology.is_manifold);  // still a PL manifold: only its topology is wrong
+      EXPECT_NE(o.topology.betti[2], 1u);   // RP² and the Klein bottle are closed: β₂ = 1 over Z/2
+    }
+  }
+}
+
+TEST(PointCloud, ThreadsGiveTheSameResult) {
+  // The functions are evaluated concurrently by the workers: same simplices, same topology.
+  const test::Samples s = test::sample_manifold("torus", 3000, 0.01);
+  const Outcome one = mesh(s.points, s.d, s.m, {}, 1), two = mesh(s.points, s.d, s.m, {}, 2);
+  EXPECT_EQ(one.simplices, two.simplices);
+  EXPECT_EQ(one.topology.cells, two.topology.cells);
+  EXPECT_EQ(two.topology.betti, (std::vector<std::size_t>{1, 2, 1}));
+}
+
+TEST(PointCloud, DefaultsFollowTheSpacing) {
+  const test::Samples s = test::sample_manifold("sphere", 2000);
+  PointCloudProblem p = make_point_cloud_problem(s.points, 3, 2);
+  const PointCloudDiagnostics& g = p.diagnostics;
+  EXPECT_GT(g.spacing, 0.02);  // 2000 random points on the unit sphere: about 0.037
+  EXPECT_LT(g.spacing, 0.06);
+  EXPECT_DOUBLE_EQ(g.edge_length, 2 * g.spacing);
+  EXPECT_DOUBLE_EQ(g.radius, 5 * g.spacing);
+  EXPECT_DOUBLE_EQ(g.tube_radius, 3 * g.edge_length);
+  EXPECT_EQ(g.components, 1u);
+  EXPECT_FALSE(p.seeds.empty());
+  // F vanishes near the samples and changes sign across the sphere.
+  double in[3] = {0.9, 0, 0}, out[3] = {1.1, 0, 0}, vin, vout;
+  p.function->evaluate(in, &vin);
+  p.function->evaluate(out, &vout);
+  EXPECT_LT(vin * vout, 0);
+  double far[3] = {5, 5, 5}, dv;
+  p.domain->evaluate(far, &dv);
+  EXPECT_GT(dv, 0);  // outside the tube
+  EXPECT_EQ(make_point_cloud_problem(test::sample_manifold("two-spheres", 2000).points, 3, 2).diagnostics.components,
+            2u);
+}
+
+#ifndef __SANITIZE_ADDRESS__
+TEST(PointCloud, EvaluationAllocatesNothing) {
+  for (const char* name : {"torus", "flat-torus", "s3"}) {
+    const test::Samples s = test::sample_manifold(name, 2000, 0.01);
+    for (PointCloudFunction function : {PointCloudFunction::blended, PointCloudFunction::nearest}) {
+      PointCloudOptions options;
+      options.function = function;
+      const PointCloudProblem p = make_point_cloud_problem(s.points, s.d, s.m, options);
+      std::vector<double> x(s.d), value(s.d);
+      const std::size_t before = allocations;
+      for (std::size_t i = 0; i < 1000; ++i) {
+        for (int t = 0; t < s.d; ++t) x[t] = s.points[i * s.d + t] * (1 + 0.05 * ((i % 7) - 3.0));  // near and far
+        p.function->evaluate(x.data(), value.data());
+        p.domain->evaluate(x.data(), value.data());
+      }
+      EXPECT_EQ(allocations - before, 0u) << name;
+    }
+  }
+}
+#endif
+
+TEST(PointCloud, OutliersAreNotSeeds) {
+  // 20 samples scattered in the box around a sphere: they must not seed little sheets of their own.
+  test::Samples s = test::sample_manifold("sphere", 2000, 0.01);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> box(-2, 2);
+  for (int i = 0; i < 20 * 3; ++i) s.points.push_back(box(rng));
+  const Outcome o = mesh(s.points, 3, 2);
+  EXPECT_EQ(o.topology.betti, (std::vector<std::size_t>{1, 0, 1}));
+  EXPECT_GE(o.diagnostics.isolated_samples, 15u);
+  EXPECT_LE(o.diagnostics.isolated_samples, 20u);
+}
+
+TEST(PointCloud, GivenNormalsOrient) {
+  test::Samples s = test::sample_manifold("sphere", 2000);
+  PointCloudOptions options;
+  options.normals = s.points;  // the outward normal of the unit sphere is the point itself
+  const Outcome o = mesh(s.points, 3, 2, options);
+  EXPECT_TRUE(o.diagnostics.used_given_normals);
+  EXPECT_EQ(o.topology.betti, (std::vector<std::size_t>{1, 0, 1}));
+}
+
+TEST(PointCloud, BadInput) {
+  const std::vector<double> three = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  EXPECT_THROW(make_point_cloud_problem(three, 3, 2), InputError);                                        // n < m + 2
+  EXPECT_THROW(make_point_cloud_problem(test::sample_manifold("sphere", 100).points, 3, 3), InputError);  // m = d
+  EXPECT_THROW(make_point_cloud_problem(test::sample_manifold("sphere", 100).points, 3, 0), InputError);
+  std::vector<double> nan = test::sample_manifold("sphere", 100).points;
+  nan[5] = std::nan("");
+  EXPECT_THROW(make_point_cloud_problem(nan, 3, 2), InputError);
+  PointCloudOptions bad;
+  bad.edge_length = -1;
+  EXPECT_THROW(make_point_cloud_problem(test::sample_manifold("sphere", 100).points, 3, 2, bad), InputError);
+  const std::vector<double> same(30, 1.0);  // ten copies of one point
+  EXPECT_THROW(make_point_cloud_problem(same, 3, 2), InputError);
+}
+
+// ---- Real samples: CGAL's data set (Debian libcgal-demo), extracted at test time ---------------
+
+fs::path cgal_data() {
+  const char* env = std::getenv("COXMESH_CGAL_DATA");
+  const fs::path archive = env ? env : "/usr/share/doc/libcgal-dev/data.tar.gz";
+  if (!fs::exists(archive)) return {};
+  const fs::path dir = fs::path(COXMESH_TEST_BINARY_DIR) / "cgal_data";  // the build directory
+  if (fs::exists(dir / "data/points_3/sphere_20k.xyz")) return dir / "data";
+  // Extract to a private directory, then rename: tests running in parallel never see half a file.
+  const fs::path tmp = dir.parent_path() / ("cgal_data.tmp." + std::to_string(::getpid()));
+  fs::create_directories(tmp);
+  const std::string cmd =
+      "tar -xzf '" + archive.string() + "' -C '" + tmp.string() +
+      "' data/meshes/bunny00.off data/meshes/knot1.off data/points_3/kitten.xyz data/points_3/sphere_20k.xyz";
+  if (std::system(cmd.c_str()) != 0) {  // the archive is there but unreadable or without the files: a failure
+    fs::remove_all(tmp);
+    ADD_FAILURE() << "cannot extract the samples from " << archive;
+  }
+  std::error_code ec;
+  fs::rename(tmp, dir, ec);
+  if (ec) fs::remove_all(tmp);  // another test got there first
+  return dir / "data";
+}
+
+void expect_topology(const std::string& file, std::vector<std::size_t> betti) {
+  const fs::path data = cgal_data();
+  if (data.empty()) GTEST_SKIP() << "CGAL's sample data (Debian package libcgal-demo) is not installed";
+  const PointSet set = read_points((data / file).string());
+  const Outcome o = mesh(set.points, 3, 2);
+  EXPECT_TRUE(o.topology.is_manifold) << o.topology.manifold_problem;
+  EXPECT_EQ(o.topology.betti, betti) << file;
+  EXPECT_FALSE(o.diagnostics.frames_inconsistent) << o.diagnostics.warning;
+  EXPECT_TRUE(o.topology.boundary_cells.empty() || o.topology.boundary_cells[0] == 0);
+}
+
+TEST(RealSamples, BunnyIsASphere) { expect_topology("meshes/bunny00.off", {1, 0, 1}); }
+TEST(RealSamples, KnotIsATorus) { expect_topology("meshes/knot1.off", {1, 2, 1}); }
+// The kitten's tail meets its back: a handle (genus 1).
+TEST(RealSamples, KittenHasOneHandle) { expect_topology("points_3/kitten.xyz", {1, 2, 1}); }
+// A noisy sphere: the samples lie within ±0.15 of the unit sphere, noise 1.3 times their spacing.
+TEST(RealSamples, NoisySphere) { expect_topology("points_3/sphere_20k.xyz", {1, 0, 1}); }
+
+}  // namespace
