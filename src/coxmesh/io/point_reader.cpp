@@ -1,5 +1,6 @@
 // Point-cloud readers: every format ends in one validated n × d array (see point_reader.h).
 #include "coxmesh/io/point_reader.h"
+#include "coxmesh/util/parse_number.h"
 
 #include <algorithm>
 #include <bit>
@@ -35,15 +36,6 @@ std::string read_file(const std::string& path) {
 }
 
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f'; }
-
-// The number a whole token spells, if it does ('+' allowed; NaN and Inf are parsed, the caller rejects them).
-std::optional<double> to_number(std::string_view token) {
-  if (token.size() > 1 && token[0] == '+' && token[1] != '-') token.remove_prefix(1);
-  double v = 0;
-  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
-  if (ec != std::errc() || end != token.data() + token.size()) return std::nullopt;
-  return v;
-}
 
 // Lines of text with their 1-based numbers; '#' comments cut off.
 class Lines {
@@ -98,7 +90,7 @@ std::vector<std::string_view> split(std::string_view line, char separator) {
 std::string where(std::size_t line) { return "line " + std::to_string(line); }
 
 double checked(std::string_view token, const std::string& path, const std::string& place) {
-  const std::optional<double> v = to_number(token);
+  const std::optional<double> v = parse_double(token);
   if (!v) fail(path, place + ": '" + std::string(token) + "' is not a number");
   if (std::isnan(*v)) fail(path, place + ": NaN is not a coordinate");
   if (!std::isfinite(*v)) fail(path, place + ": infinite value '" + std::string(token) + "'");
@@ -117,7 +109,7 @@ PointSet read_rows(const std::string& path, std::string_view text, char separato
     const std::vector<std::string_view> tokens = split(line, separator);
     if (tokens.empty()) continue;
     if (first && header_allowed &&
-        std::any_of(tokens.begin(), tokens.end(), [](std::string_view t) { return !to_number(t); })) {
+        std::any_of(tokens.begin(), tokens.end(), [](std::string_view t) { return !parse_double(t); })) {
       first = false;  // a header line of column names
       continue;
     }
@@ -181,7 +173,7 @@ PointSet read_off(const std::string& path, std::string_view text) {
       if (!next_tokens()) fail(path, std::string("the header ends before the ") + what);
       rest = tokens;
     }
-    const std::optional<double> v = to_number(rest.front());
+    const std::optional<double> v = parse_double(rest.front());
     if (!v || *v < 0 || *v != std::floor(*v) || *v > 1e15)
       fail(path, where(lines.number()) + ": the " + what + " '" + std::string(rest.front()) + "' is not a count");
     rest.erase(rest.begin());
@@ -273,7 +265,7 @@ PointSet read_ply(const std::string& path, std::string_view text) {
     if (t[0] == "format" && t.size() >= 2) {
       format = t[1];
     } else if (t[0] == "element" && t.size() == 3) {
-      const std::optional<double> c = to_number(t[2]);
+      const std::optional<double> c = parse_double(t[2]);
       if (!c || *c < 0 || *c != std::floor(*c) || *c > 1e15)
         fail(path, where(lines.number()) + ": bad element count '" + std::string(t[2]) + "'");
       elements.push_back({std::string(t[1]), static_cast<long long>(*c), {}});
@@ -345,7 +337,7 @@ PointSet read_ply(const std::string& path, std::string_view text) {
           fail(path, where(lines.number()) + ": a vertex has " + std::to_string(t.size()) +
                          " values, the header declares " + std::to_string(row.size()));
         for (std::size_t j = 0; j < t.size(); ++j) {
-          const std::optional<double> v = to_number(t[j]);
+          const std::optional<double> v = parse_double(t[j]);
           if (!v) fail(path, where(lines.number()) + ": '" + std::string(t[j]) + "' is not a number");
           row[j] = *v;
         }
@@ -424,7 +416,7 @@ PointSet read_npy(const std::string& path, std::string_view text) {
   std::vector<long long> shape;
   for (std::string_view t : split(std::string_view(header).substr(open + 1, end - open - 1), ',')) {
     if (t.empty()) continue;
-    const std::optional<double> s = to_number(t);
+    const std::optional<double> s = parse_double(t);
     if (!s || *s < 0 || *s != std::floor(*s) || *s > 1e15) fail(path, "malformed shape in the .npy header");
     shape.push_back(static_cast<long long>(*s));
   }
