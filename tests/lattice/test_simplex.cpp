@@ -21,7 +21,7 @@ TEST(Simplex, TextRoundTrip) {
 }
 
 TEST(Simplex, VerticesFollowTheEncoding) {
-  // Spec §1.10 example 3: vertices of (0,0,0)[{0},{1},{2},{3}].
+  // A worked example computed with GUDHI: vertices of (0,0,0)[{0},{1},{2},{3}].
   const Simplex s = parse_simplex("(0,0,0) [{0},{1},{2},{3}]");
   const int expected[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {1, 1, 1}};
   for (int j = 0; j < 4; ++j)

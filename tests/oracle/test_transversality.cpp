@@ -105,7 +105,7 @@ TEST(Transversality, EveryCofacetHasZeroOrTwoTransverseFacets) {
 }
 
 TEST(Transversality, SpecExample) {
-  // Spec §3: F = x² + y² − 1 on the segment (0,0)–(2,0): values −1, 3 → λ = (3/4, 1/4).
+  // Thesis §4.3: F = x² + y² − 1 on the segment (0,0)–(2,0): values −1, 3 → λ = (3/4, 1/4).
   const double m[] = {1, -1, 1, 3};
   double lambda[2];
   ASSERT_TRUE(lexicographic_solve(2, m, lambda));

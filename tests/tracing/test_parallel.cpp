@@ -28,7 +28,7 @@ struct Case {
   std::size_t max_simplices = TraceOptions{}.max_simplices;
 };
 
-// Spec §2.4 the plain way: level j numbers the l-cofaces of level j − 1's cells in order of
+// The cell complex (thesis §4.2) the plain way: level j numbers the l-cofaces of level j − 1's cells in order of
 // discovery; each cell's facets in increasing order.
 struct ReferenceLevel {
   PackedKeyIndex simplices;

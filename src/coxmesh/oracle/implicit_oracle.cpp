@@ -1,4 +1,4 @@
-// Spec §3: M(τ)·λ = (1, 0, …, 0)ᵀ with the exact lexicographic rule; D̂ interpolated at the point.
+// Thesis §4.3: M(τ)·λ = (1, 0, …, 0)ᵀ with the exact lexicographic rule; D̂ interpolated at the point.
 #include "coxmesh/oracle/implicit_oracle.h"
 
 #include <algorithm>

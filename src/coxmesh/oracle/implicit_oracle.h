@@ -1,4 +1,4 @@
-// Spec §3: the intersection oracle of an implicit manifold F̂ = 0 (optionally within D̂ < 0), with
+// Thesis §4.3: the intersection oracle of an implicit manifold F̂ = 0 (optionally within D̂ < 0), with
 // F and D evaluated exactly once per lattice vertex.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Spec §3: lexicographic transversality. Exactness matters: a wrong sign on a degenerate simplex
+// Thesis §4.3: lexicographic transversality. Exactness matters: a wrong sign on a degenerate simplex
 // would give a (k+1)-simplex 1 or 3 transverse facets and a non-manifold output.
 #include "coxmesh/oracle/transversality.h"
 

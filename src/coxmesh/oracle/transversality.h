@@ -1,4 +1,4 @@
-// Spec §3: the exact transversality rule (Allgower–Georg "completely labelled" simplices).
+// Thesis §4.3: the exact transversality rule (Allgower–Georg "completely labelled" simplices).
 #pragma once
 
 namespace coxmesh {
