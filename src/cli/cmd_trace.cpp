@@ -4,25 +4,17 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
-#include <random>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
-#include <sstream>
 
 #include "commands.h"
 #include "common.h"
-#include "coxmesh/cell_complex/cell_complex.h"
-#include "coxmesh/cell_complex/topology.h"
 #include "coxmesh/io/atomic_file.h"
 #include "coxmesh/io/write_mesh.h"
+#include "coxmesh/mesh/mesh_manifold.h"
 #include "coxmesh/oracle/expression_function.h"
-#include "coxmesh/oracle/implicit_oracle.h"
-#include "coxmesh/oracle/regularity.h"
 #include "coxmesh/oracle/presets.h"
-#include "coxmesh/tracing/seeds.h"
-#include "coxmesh/util/parallel_for.h"
 #include "points.h"
 #include "report.h"
 
@@ -186,128 +178,66 @@ void run(TraceCliOptions o) {
     if (format != MeshFormat::cxm) make_projection(o.project, d, {});  // the spec fits d (pca and files: checked again on the points)
   }
 
-  TraceOptions options;
-  // Memory bounds the run too, through an estimate per simplex (deterministic, unlike a measure of
-  // the process): the smaller limit applies, and the summary names it.
-  const int m = d - f->codimension();
-  const std::uint64_t by_memory = o.max_memory / estimated_bytes_per_simplex(m);
-  const bool memory_binds = by_memory < o.max_simplices;
-  options.max_simplices = memory_binds ? std::max<std::uint64_t>(by_memory, 1) : o.max_simplices;
-  Box search_box{std::vector<double>(d, -extent), std::vector<double>(d, extent)};
+  MeshOptions mo;
+  mo.trace.max_simplices = o.max_simplices;
+  mo.max_memory = o.max_memory;
+  mo.auto_seed = o.auto_seed;
+  mo.search_box = {std::vector<double>(d, -extent), std::vector<double>(d, extent)};
   if (!o.box.empty()) {
     const std::vector<double> b = parse_point(o.box, "--box");
     if (static_cast<int>(b.size()) != 2 * d)
       throw InputError("--box needs 2d = " + std::to_string(2 * d) + " numbers lo1,...,lod,hi1,...,hid");
-    Box box{std::vector<double>(b.begin(), b.begin() + d), std::vector<double>(b.begin() + d, b.end())};
+    mo.search_box = {std::vector<double>(b.begin(), b.begin() + d), std::vector<double>(b.begin() + d, b.end())};
     for (int i = 0; i < d; ++i)
-      if (!(box.lo[i] < box.hi[i])) throw InputError("--box: lo must be below hi in every coordinate");
-    search_box = box;
+      if (!(mo.search_box.lo[i] < mo.search_box.hi[i])) throw InputError("--box: lo must be below hi in every coordinate");
+  } else if (cloud) {
+    mo.search_box = cloud->problem.box;  // the samples' box, widened by the tube
   }
-  if (cloud && o.box.empty()) search_box = cloud->problem.box;  // the samples' box, widened by the tube
   // The box bounds the walk as a domain (cells along it are closed): when given, and for equations
   // whose seeds are searched in the default box. Seeds given by hand: their whole components.
   // (Samples are bounded by their tube.)
-  const bool bounded_by_box = !o.box.empty() || (from_text && o.seeds.empty());
-  if (bounded_by_box) {
-    FunctionPtr box = box_domain(search_box);
-    domain = domain_intersection(domain, box);
-    make_problem = [inner = make_problem, box] {
-      auto [fw, dw] = inner();
-      return std::pair{fw, domain_intersection(dw, box)};
-    };
-  }
+  mo.bounded_by_box = !o.box.empty() || (from_text && o.seeds.empty());
   if (from_text) {  // default scale: 40 edges across the narrowest side of the box
-    default_edge = search_box.hi[0] - search_box.lo[0];
-    for (int i = 1; i < d; ++i) default_edge = std::min(default_edge, search_box.hi[i] - search_box.lo[i]);
+    default_edge = mo.search_box.hi[0] - mo.search_box.lo[0];
+    for (int i = 1; i < d; ++i) default_edge = std::min(default_edge, mo.search_box.hi[i] - mo.search_box.lo[i]);
     default_edge /= 40;
   }
   TriangulationOptions tri = o.tri;
   if (!tri.scale && !tri.edge_length && tri.matrix_file.empty()) tri.edge_length = default_edge;
   const Triangulation t = tri.build(d);
 
-  std::vector<std::vector<double>> given;
   for (const std::string& s : o.seeds) {
     std::vector<double> x = parse_point(s, "--seed");
     if (static_cast<int>(x.size()) != d)
       throw InputError("--seed " + s + " has " + std::to_string(x.size()) + " coordinates, expected " + std::to_string(d));
-    given.push_back(std::move(x));
+    mo.seeds.push_back(std::move(x));
   }
-  SeedChoice choice;
-  if (cloud) {  // samples spread over every component of the neighbour graph, and any given seeds
-    choice.seeds = std::move(given);
-    choice.seeds.insert(choice.seeds.end(), cloud->problem.seeds.begin(), cloud->problem.seeds.end());
-    choice.automatic = cloud->problem.seeds.size();
-    choice.skip_unusable = true;
-  } else {
-    choice = choose_seeds(*f, domain.get(), given, o.auto_seed, search_box, t);
+  if (cloud) {  // samples spread over every component of the neighbour graph, as they are
+    mo.seeds.insert(mo.seeds.end(), cloud->problem.seeds.begin(), cloud->problem.seeds.end());
+    mo.project_seeds = false;
+    mo.trace.skip_unusable_seeds = true;
+    mo.check_regularity = false;  // (samples have their own diagnostics)
   }
-  const std::vector<std::vector<double>>& seeds = choice.seeds;
-  const std::size_t automatic = choice.automatic;
-  options.skip_unusable_seeds = choice.skip_unusable;
 
   std::optional<ProgressDisplay> progress;
   if (!o.json && !o.quiet) {
     progress.emplace();
-    options.progress = [&progress](std::size_t traced) { progress->traced(traced); };
+    mo.trace.progress = [&progress](std::size_t traced) { progress->traced(traced); };
+    mo.on_phase = [&progress](const std::string& phase) { progress->phase(phase); };
   }
-
-  const auto t0 = Clock::now();
-  options.threads = resolve_threads(o.threads);
-  // Several workers share the vertex values (F once per vertex in all); each has its own
-  // functions, since an expression evaluator is not thread-safe.
-  const auto shared = options.threads > 1 ? ImplicitOracle::make_shared_values(t, f, domain) : nullptr;
-  bool first_worker = true;
-  TraceResult traced = trace_manifold(t, [&]() -> std::unique_ptr<IntersectionOracle> {
-    if (first_worker) {  // the main thread's functions; fresh ones for the other workers
-      first_worker = false;
-      return std::make_unique<ImplicitOracle>(t, f, domain, shared);
-    }
+  mo.trace.threads = o.threads;
+  // Expression functions are not thread-safe: every worker but the first gets its own.
+  bool first = true;
+  const MeshReport report = mesh_manifold(t, [&]() -> ManifoldFunctions {
+    if (first) return first = false, ManifoldFunctions{f, domain};
     auto [fw, dw] = make_problem();
-    return std::make_unique<ImplicitOracle>(t, fw, dw, shared);
-  }, seeds, options);
-  const double h = t.longest_edge();
-  const ImplicitFunction* f_only[] = {f.get()};
-  if (traced.simplices.size() == 0) {
-    std::vector<double> seed_points;
-    for (const auto& x : seeds) seed_points.insert(seed_points.end(), x.begin(), x.end());
-    if (singular_on(f_only, seed_points, h, 48, 0.02))
-      throw InputError("F's differential is singular at the seeds: F vanishes identically near them or its equations are "
-                       "dependent, so 0 is not a regular value of F and there is no manifold to trace");
-    throw InputError("no simplex near the " + std::to_string(seeds.size()) +
-                     " seeds meets the manifold: the triangulation is too coarse for it (give a smaller --edge-length)");
-  }
-  const double trace_s = seconds_since(t0);
-  const auto status = traced.status;
-  const std::string message =
-      traced.status == TraceStatus::max_simplices_reached && memory_binds
-          ? "stopped at " + std::to_string(options.max_simplices) + " simplices, about the memory limit of " +
-                std::to_string(o.max_memory >> 20) + " MiB (--max-memory); give a larger --edge-length, a domain, or more memory"
-          : traced.message;
-  const std::uint64_t evaluations = traced.function_evaluations, oracle_calls = traced.oracle_calls;
-
-  if (progress) progress->phase("building the cell complex");
-  const auto t1 = Clock::now();
-  const CellComplex cc = build_cell_complex(std::move(traced), options.threads);
-  const double complex_s = seconds_since(t1);
-  if (progress) progress->phase("computing the topology");
-  const auto t2 = Clock::now();
-  const TopologyReport topo = analyze_topology(cc);
-  const double topo_s = seconds_since(t2);
-  // The exact rule meshes a perturbed level set where F = 0 is not a regular level: say so.
-  // (Samples have their own diagnostics.)
-  std::vector<std::string> warnings;
-  if (!cloud && singular_on(f_only, {cc.vertices.data(), cc.vertices.size()}, h))
-    warnings.push_back("F's differential is (nearly) singular on the traced set: 0 is not a regular value of F (F is a "
-                       "square, F >= 0, or its equations are dependent there); what was meshed is a perturbed level set "
-                       "near F = 0");
-  if (domain && !cloud) {
-    const ImplicitFunction* f_and_domain[] = {f.get(), domain.get()};
-    if (singular_on(f_and_domain, {cc.boundary_vertices.data(), cc.boundary_vertices.size()}, h))
-      warnings.push_back("the domain's boundary is tangent to the manifold along the cut (D = 0 contains M or touches "
-                         "it): the cut meshed is a perturbed one");
-  }
+    return {fw, dw};
+  }, mo);
+  const CellComplex& cc = report.cells;
+  const TopologyReport& topo = report.topology;
+  const std::size_t automatic = cloud ? cloud->problem.seeds.size() : report.automatic_seeds;
   if (!o.json)
-    for (const std::string& w : warnings) std::cerr << "coxmesh: warning: " << w << "\n";
+    for (const std::string& w : report.warnings) std::cerr << "coxmesh: warning: " << w << "\n";
 
   WrittenCounts written;
   double write_s = 0;
@@ -319,12 +249,12 @@ void run(TraceCliOptions o) {
     for (const std::string& text : o.domains) wo.native.source += "; domain " + text;
     if (o.domain_ball) wo.native.source += "; domain-ball " + std::to_string(*o.domain_ball);
     if (!o.cut.empty()) wo.native.source += "; cut " + o.cut;
-    wo.native.complete = status == TraceStatus::complete;
-    wo.native.message = message;
+    wo.native.complete = report.status == TraceStatus::complete;
+    wo.native.message = report.message;
     for (int r = 0; r < d; ++r)
       for (int c = 0; c < d; ++c) wo.native.matrix.push_back(t.matrix()(r, c));
     wo.native.offset.assign(t.offset().data(), t.offset().data() + d);
-    wo.native.function_evaluations = evaluations;
+    wo.native.function_evaluations = report.function_evaluations;
     const auto t3 = Clock::now();
     written = write_mesh(output, format, cc, wo);
     write_s = seconds_since(t3);
@@ -338,14 +268,16 @@ void run(TraceCliOptions o) {
     if (cloud) j["point_cloud"] = point_cloud_json(*cloud);
     else if (from_text) j["function"] = o.function;
     else j["preset"] = o.preset;
-    j["function_evaluations"] = evaluations;
-    j["oracle_calls"] = oracle_calls;
-    j["seeds"] = seeds.size();
+    j["function_evaluations"] = report.function_evaluations;
+    j["oracle_calls"] = report.oracle_calls;
+    j["seeds"] = report.seeds;
     j["automatic_seeds"] = automatic;
-    j["complete"] = status == TraceStatus::complete;
-    if (!message.empty()) j["message"] = message;
-    if (!warnings.empty()) j["warnings"] = warnings;
-    j["timings"] = {{"trace_seconds", trace_s}, {"cell_complex_seconds", complex_s}, {"topology_seconds", topo_s}};
+    j["complete"] = report.status == TraceStatus::complete;
+    if (!report.message.empty()) j["message"] = report.message;
+    if (!report.warnings.empty()) j["warnings"] = report.warnings;
+    j["timings"] = {{"trace_seconds", report.trace_seconds},
+                      {"cell_complex_seconds", report.cell_complex_seconds},
+                      {"topology_seconds", report.topology_seconds}};
     if (write) {
       j["timings"]["write_seconds"] = write_s;
       j["output"] = {{"path", output}, {"format", format_name(format)}, {"points", written.points},
@@ -358,10 +290,10 @@ void run(TraceCliOptions o) {
     if (cloud) print_point_cloud(out, *cloud);
     print_topology(out, cc, topo);
     if (automatic) out << "  seeds              " << automatic << (cloud ? " samples" : " found automatically in the box") << "\n";
-    out << "  F evaluations      " << evaluations << " (" << oracle_calls << " oracle calls)\n"
-              << "  time               trace " << trace_s << " s ("
-              << static_cast<long long>(cc.interior[0].size() / std::max(trace_s, 1e-9)) << " simplices/s), cell complex "
-              << complex_s << " s, topology " << topo_s << " s";
+    out << "  F evaluations      " << report.function_evaluations << " (" << report.oracle_calls << " oracle calls)\n"
+              << "  time               trace " << report.trace_seconds << " s ("
+              << static_cast<long long>(cc.interior[0].size() / std::max(report.trace_seconds, 1e-9)) << " simplices/s), cell complex "
+              << report.cell_complex_seconds << " s, topology " << report.topology_seconds << " s";
     if (write) out << ", write " << write_s << " s";
     out << "\n  peak memory        " << peak_memory_bytes() / (1 << 20) << " MiB\n";
     if (write) {
@@ -370,7 +302,7 @@ void run(TraceCliOptions o) {
       if (written.skipped) out << "; " << written.skipped << " open cells at the cut not written";
       out << ")\n";
     }
-    if (!message.empty()) out << "  note: " << message << "\n";
+    if (!report.message.empty()) out << "  note: " << report.message << "\n";
   }
 }
 

@@ -1,0 +1,111 @@
+#include "coxmesh/mesh/mesh_manifold.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "coxmesh/oracle/implicit_oracle.h"
+#include "coxmesh/oracle/regularity.h"
+#include "coxmesh/tracing/seeds.h"
+#include "coxmesh/util/parallel_for.h"
+
+namespace coxmesh {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+}  // namespace
+
+MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, const MeshOptions& o) {
+  const ManifoldFunctions first = make();
+  const FunctionPtr& f = first.f;
+  const int d = t.dimension();
+  if (!f || f->ambient_dimension() != d)
+    throw InputError("the manifold and the triangulation must live in the same R^d");
+  Box box = o.search_box;
+  if (box.lo.empty()) box = {std::vector<double>(d, -2.0), std::vector<double>(d, 2.0)};
+  FunctionPtr bound = o.bounded_by_box ? box_domain(box) : nullptr;
+  const auto with_box = [&bound](FunctionPtr domain) { return bound ? domain_intersection(domain, bound) : domain; };
+  const FunctionPtr domain = with_box(first.domain);
+
+  MeshReport report;
+  SeedChoice seeds;
+  if (o.project_seeds) {
+    seeds = choose_seeds(*f, domain.get(), o.seeds, o.auto_seed, box, t);
+  } else {
+    seeds.seeds = o.seeds;
+    if (seeds.seeds.empty()) throw SeedError("no seed given");
+  }
+  report.seeds = seeds.seeds.size();
+  report.automatic_seeds = seeds.automatic;
+
+  // Memory bounds the run through an estimate per simplex (deterministic, unlike a measure of the
+  // process): the smaller of the two limits applies, and the message names it.
+  TraceOptions trace = o.trace;
+  trace.skip_unusable_seeds |= seeds.skip_unusable;
+  trace.threads = resolve_threads(o.trace.threads);
+  const std::uint64_t by_memory =
+      o.max_memory ? o.max_memory / estimated_bytes_per_simplex(d - f->codimension()) : ~std::uint64_t{0};
+  const bool memory_binds = by_memory < trace.max_simplices;
+  if (memory_binds) trace.max_simplices = std::max<std::uint64_t>(by_memory, 1);
+
+  const auto t0 = Clock::now();
+  // Several workers share the vertex values (F once per vertex in all), each with its own functions.
+  const auto shared = trace.threads > 1 ? ImplicitOracle::make_shared_values(t, f, domain) : nullptr;
+  bool first_worker = true;
+  TraceResult traced = trace_manifold(t, [&]() -> std::unique_ptr<IntersectionOracle> {
+    if (first_worker) {
+      first_worker = false;
+      return std::make_unique<ImplicitOracle>(t, f, domain, shared);
+    }
+    const ManifoldFunctions w = make();
+    return std::make_unique<ImplicitOracle>(t, w.f, with_box(w.domain), shared);
+  }, seeds.seeds, trace);
+  report.trace_seconds = seconds_since(t0);
+  const double h = t.longest_edge();
+  const ImplicitFunction* f_only[] = {f.get()};
+  if (traced.simplices.size() == 0) {
+    std::vector<double> points;
+    for (const auto& x : seeds.seeds) points.insert(points.end(), x.begin(), x.end());
+    if (o.check_regularity && singular_on(f_only, points, h))
+      throw InputError("F's differential is singular at the seeds: F vanishes identically near them or its equations are "
+                       "dependent, so 0 is not a regular value of F and there is no manifold to trace");
+    throw InputError("no simplex near the " + std::to_string(seeds.seeds.size()) +
+                     " seeds meets the manifold: the triangulation is too coarse for it (give a smaller edge length)");
+  }
+  report.status = traced.status;
+  report.message = traced.status == TraceStatus::max_simplices_reached && memory_binds
+                       ? "stopped at " + std::to_string(trace.max_simplices) + " simplices, about the memory limit of " +
+                             std::to_string(o.max_memory >> 20) +
+                             " MiB; give a larger edge length, a domain, or more memory"
+                       : traced.message;
+  report.function_evaluations = traced.function_evaluations;
+  report.oracle_calls = traced.oracle_calls;
+
+  if (o.on_phase) o.on_phase("building the cell complex");
+  const auto t1 = Clock::now();
+  report.cells = build_cell_complex(std::move(traced), trace.threads);
+  report.cell_complex_seconds = seconds_since(t1);
+  if (o.on_phase) o.on_phase("computing the topology");
+  const auto t2 = Clock::now();
+  report.topology = analyze_topology(report.cells);
+  report.topology_seconds = seconds_since(t2);
+
+  // The exact rule meshes a perturbed level set where F = 0 is not a regular level: say so.
+  const CellComplex& cc = report.cells;
+  if (o.check_regularity && singular_on(f_only, {cc.vertices.data(), cc.vertices.size()}, h))
+    report.warnings.push_back(
+        "F's differential is (nearly) singular on the traced set: 0 is not a regular value of F (F is a square, F >= 0, "
+        "or its equations are dependent there); what was meshed is a perturbed level set near F = 0");
+  if (o.check_regularity && domain) {
+    const ImplicitFunction* f_and_domain[] = {f.get(), domain.get()};
+    if (singular_on(f_and_domain, {cc.boundary_vertices.data(), cc.boundary_vertices.size()}, h))
+      report.warnings.push_back(
+          "the domain's boundary is tangent to the manifold along the cut (D = 0 contains M or touches it): the cut "
+          "meshed is a perturbed one");
+  }
+  return report;
+}
+
+}  // namespace coxmesh

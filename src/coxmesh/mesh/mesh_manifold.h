@@ -1,0 +1,62 @@
+// The whole pipeline in one call: seeds, tracing (thesis §4.2), the cell complex, its topology and
+// the diagnostics a user needs to trust them. The command line and the Python package are thin
+// front ends over it.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "coxmesh/cell_complex/cell_complex.h"
+#include "coxmesh/cell_complex/topology.h"
+#include "coxmesh/oracle/implicit_function.h"
+#include "coxmesh/tracing/trace_manifold.h"
+
+namespace coxmesh {
+
+/// M = F⁻¹(0) ∩ {D < 0}: F: R^d → R^k and the domain D (null: none).
+struct ManifoldFunctions {
+  FunctionPtr f, domain;
+};
+/// Makes the functions once per worker thread: a function that is not thread-safe (an expression
+/// typed as text) must come fresh each time; thread-safe ones may be the same objects every time.
+using ManifoldMaker = std::function<ManifoldFunctions()>;
+
+struct MeshOptions {
+  std::vector<std::vector<double>> seeds;  ///< points near M, d coordinates each
+  bool project_seeds = true;               ///< move them onto M first (Gauss–Newton on F)
+  bool auto_seed = false;                  ///< also search seeds in search_box (always when no seed is known)
+  Box search_box;                          ///< where seeds are searched; empty: [−2, 2]^d
+  bool bounded_by_box = false;             ///< search_box also bounds the walk, as a domain
+  std::uint64_t max_memory = 0;            ///< bytes for trace, complex and topology (0: no limit)
+  bool check_regularity = true;            ///< warn where 0 is not a regular value of F (regularity.h)
+  /// Limits (max_simplices, also derived from max_memory), threads, progress; skip_unusable_seeds
+  /// is set when seeds were found automatically.
+  TraceOptions trace;
+  std::function<void(const std::string& phase)> on_phase;  ///< "building the cell complex", …
+};
+
+struct MeshReport {
+  CellComplex cells;
+  TopologyReport topology;
+  TraceStatus status = TraceStatus::complete;
+  std::string message;                ///< why the run stopped early (empty when complete)
+  std::vector<std::string> warnings;  ///< one sentence each
+  std::uint64_t function_evaluations = 0, oracle_calls = 0;
+  std::size_t seeds = 0, automatic_seeds = 0;
+  double trace_seconds = 0, cell_complex_seconds = 0, topology_seconds = 0;
+};
+
+/// Meshes M on the triangulation t: seeds (given, F's own, or searched in the box), the walk from
+/// them with options.trace.threads workers (F once per lattice vertex in all), the cell complex and
+/// its topology (none when the run was stopped by a limit: the complex is then open).
+///   Throws InputError when no seed is found or none reaches M (saying whether F is not finite, or
+///   its differential singular, there), SeedError, EvaluationError.
+///
+///   MeshReport r = mesh_manifold(Triangulation::coxeter(3).with_longest_edge(0.1),
+///                                [] { return ManifoldFunctions{sphere(2, 3, 1.0), nullptr}; }, {});
+MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, const MeshOptions& options);
+
+}  // namespace coxmesh
