@@ -60,6 +60,7 @@ py::dict summary(const Mesh& m) {
   j["automatic_seeds"] = m.automatic_seeds;
   j["complete"] = m.info.complete;
   if (!m.info.message.empty()) j["message"] = m.info.message;
+  if (!m.warnings.empty()) j["warnings"] = m.warnings;
   j["timings"] = m.timings;
   return j;
 }
@@ -133,6 +134,8 @@ The summary attributes carry the keys of `coxmesh trace --json`; summary() retur
       .def_property_readonly("automatic_seeds", [](const Mesh& x) { return x.automatic_seeds; }, "seeds found automatically in the box")
       .def_property_readonly("complete", [](const Mesh& x) { return x.info.complete; }, "False when max_simplices or the box stopped the trace")
       .def_property_readonly("message", [](const Mesh& x) { return x.info.message; }, "why the trace stopped early ('' when complete)")
+      .def_property_readonly("warnings", [](const Mesh& x) { return x.warnings; },
+                             "what the user should know to trust the result (e.g. 0 is not a regular value of F)")
       .def_property_readonly("source", [](const Mesh& x) { return x.info.source; }, "how the manifold was given")
       .def_property_readonly("timings", [](const Mesh& x) { return x.timings; }, "seconds per phase: trace, cell complex, topology")
       .def("summary", &summary, "The summary as a dict, with the keys of `coxmesh trace --json`.")

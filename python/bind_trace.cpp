@@ -9,10 +9,8 @@
 
 #include "bindings.h"
 #include "coxmesh/oracle/expression_function.h"
-#include "coxmesh/oracle/implicit_oracle.h"
+#include "coxmesh/mesh/mesh_manifold.h"
 #include "coxmesh/oracle/presets.h"
-#include "coxmesh/tracing/seeds.h"
-#include "coxmesh/util/parallel_for.h"
 #include "mesh.h"
 #include "python_function.h"
 
@@ -49,12 +47,6 @@ std::optional<int> dimension_shown(const py::object& dim, const py::object& seed
   }
   return std::nullopt;
 }
-
-// The functions of one worker: F and the domain. Expressions are parsed again for each worker
-// (muparser is not thread-safe); Python callables and presets are shared.
-struct Problem {
-  FunctionPtr f, domain;
-};
 
 // The arguments of trace(), named after the options of `coxmesh trace`.
 struct TraceArguments {
@@ -131,20 +123,19 @@ std::unique_ptr<Mesh> trace(const TraceArguments& a) {
     }
   }
   const FunctionPtr preset_domain = preset ? preset->domain : nullptr;
-  FunctionPtr box_bound;  // the box as a domain, when it bounds the walk (below)
   auto make_domain = [&]() {
     FunctionPtr domain = preset_domain;
     for (const std::string& text : domain_texts) domain = domain_intersection(domain, expression_domain(text, d));
     for (const FunctionPtr& g : domain_callables) domain = domain_intersection(domain, g);
-    return box_bound ? domain_intersection(domain, box_bound) : domain;
+    return domain;
   };
 
   // The box (searching seeds; bounding the walk when given, or for a function) and the default
   // scale, as `coxmesh trace` chooses them.
   const double extent = preset ? preset->extent * 1.25 : 2.0;
   Box search_box{std::vector<double>(d, -extent), std::vector<double>(d, extent)};
-  TraceOptions options;
-  options.max_simplices = a.max_simplices;
+  MeshOptions mo;
+  mo.trace.max_simplices = a.max_simplices;
   if (!a.box.is_none()) {
     const auto b = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a.box);
     if (!b || b.size() != 2 * d)
@@ -155,8 +146,9 @@ std::unique_ptr<Mesh> trace(const TraceArguments& a) {
   }
   // The box bounds the walk as a domain (its cells closed) when given, and for a function whose
   // seeds are searched in the default box; seeds given by hand: their whole components.
-  if (!a.box.is_none() || (from_function && a.seeds.is_none())) box_bound = box_domain(search_box);
-  const Problem problem{f, make_domain()};
+  mo.bounded_by_box = !a.box.is_none() || (from_function && a.seeds.is_none());
+  mo.search_box = search_box;
+  mo.auto_seed = a.auto_seed;
   double default_edge = preset ? preset->edge_length : 0;
   if (from_function) {  // 40 edges across the narrowest side of the box
     default_edge = search_box.hi[0] - search_box.lo[0];
@@ -190,10 +182,8 @@ std::unique_ptr<Mesh> trace(const TraceArguments& a) {
     t = t->with_offset(Eigen::Map<const Eigen::VectorXd>(b.data(), d));
   }
 
-  // Seeds.
-  std::vector<std::vector<double>> given;
   if (!a.seeds.is_none())
-    for (const py::handle& s : a.seeds) given.push_back(point(s, d, "a seed"));
+    for (const py::handle& s : a.seeds) mo.seeds.push_back(point(s, d, "a seed"));
 
   // Ctrl-C and progress: the walk calls back every few thousand simplices; at most every 50 ms the
   // callback takes the GIL to run Python's signal handlers (KeyboardInterrupt stops the trace) and
@@ -203,8 +193,8 @@ std::unique_ptr<Mesh> trace(const TraceArguments& a) {
   if (report && !PyCallable_Check(a.progress.ptr())) throw InputError("progress must be True, False or a callable f(traced_simplices)");
   const Clock::time_point start = Clock::now();
   Clock::time_point last = start, last_shown = start;
-  options.progress_interval = 2048;
-  options.progress = [&](std::size_t traced) {
+  mo.trace.progress_interval = 2048;
+  mo.trace.progress = [&](std::size_t traced) {
     if (seconds_since(last) < 0.05) return;
     last = Clock::now();
     py::gil_scoped_acquire gil;
@@ -215,36 +205,27 @@ std::unique_ptr<Mesh> trace(const TraceArguments& a) {
       std::fprintf(stderr, "coxmesh: tracing: %zu simplices, %.1f s\n", traced, seconds_since(start));
     }
   };
-  options.threads = python_code ? 1 : resolve_threads(a.threads);
+  mo.trace.threads = python_code ? 1 : a.threads;
 
   {
     py::gil_scoped_release release;
-    SeedChoice seeds = choose_seeds(*problem.f, problem.domain.get(), given, a.auto_seed, search_box, *t);
-    options.skip_unusable_seeds = seeds.skip_unusable;
-    const auto t0 = Clock::now();
-    const auto shared = options.threads > 1 ? ImplicitOracle::make_shared_values(*t, problem.f, problem.domain) : nullptr;
-    bool first = true;
-    TraceResult traced = trace_manifold(*t, [&]() -> std::unique_ptr<IntersectionOracle> {
-      const Problem p = first ? problem : Problem{make_f(), make_domain()};
-      first = false;
-      return std::make_unique<ImplicitOracle>(*t, p.f, p.domain, shared);
-    }, seeds.seeds, options);
-    if (traced.simplices.size() == 0)
-      throw InputError("no simplex near the " + std::to_string(seeds.seeds.size()) +
-                       " seeds meets the manifold: the triangulation is too coarse for it (give a smaller edge_length)");
-    mesh->timings["trace_seconds"] = seconds_since(t0);
-    mesh->seeds = seeds.seeds.size();
-    mesh->automatic_seeds = seeds.automatic;
-    mesh->oracle_calls = traced.oracle_calls;
-    mesh->info.function_evaluations = traced.function_evaluations;
-    mesh->info.complete = traced.status == TraceStatus::complete;
-    mesh->info.message = traced.message;
-    const auto t1 = Clock::now();
-    mesh->cells = build_cell_complex(std::move(traced), options.threads);
-    mesh->timings["cell_complex_seconds"] = seconds_since(t1);
-    const auto t2 = Clock::now();
-    mesh->topology = analyze_topology(mesh->cells);
-    mesh->timings["topology_seconds"] = seconds_since(t2);
+    bool first = true;  // expressions are not thread-safe: every worker but the first gets its own
+    MeshReport r = mesh_manifold(*t, [&]() -> ManifoldFunctions {
+      if (first) return first = false, ManifoldFunctions{f, make_domain()};
+      return {make_f(), make_domain()};
+    }, mo);
+    mesh->cells = std::move(r.cells);
+    mesh->topology = std::move(r.topology);
+    mesh->seeds = r.seeds;
+    mesh->automatic_seeds = r.automatic_seeds;
+    mesh->oracle_calls = r.oracle_calls;
+    mesh->warnings = std::move(r.warnings);
+    mesh->info.function_evaluations = r.function_evaluations;
+    mesh->info.complete = r.status == TraceStatus::complete;
+    mesh->info.message = r.message;
+    mesh->timings = {{"trace_seconds", r.trace_seconds},
+                     {"cell_complex_seconds", r.cell_complex_seconds},
+                     {"topology_seconds", r.topology_seconds}};
   }
   for (int r = 0; r < d; ++r)
     for (int c = 0; c < d; ++c) mesh->info.matrix.push_back(t->matrix()(r, c));

@@ -4,6 +4,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include "coxmesh/cell_complex/cell_complex.h"
 #include "coxmesh/cell_complex/topology.h"
@@ -19,6 +20,7 @@ struct Mesh {
   std::uint64_t oracle_calls = 0;
   std::size_t seeds = 0, automatic_seeds = 0;
   std::map<std::string, double> timings;  // trace_seconds, cell_complex_seconds, topology_seconds
+  std::vector<std::string> warnings;      // one sentence each (mesh_manifold)
 };
 
 }  // namespace coxmesh::python
