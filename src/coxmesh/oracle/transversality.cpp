@@ -75,6 +75,63 @@ bool exact_solve(int n, const double* m, double* lambda) {
   return true;
 }
 
+// The rows of A⁻¹ (A n × n, column-major, factored in `lu`), each judged lexicographically
+// positive or not in floating point: 1 all positive, 0 one is not, −1 undecided (A ill-conditioned,
+// or a row whose leading entries are too small to have a certain sign: the caller decides exactly).
+// `first_column` receives A⁻¹'s first column.
+int certified_row_signs(int n, const double* a, const SmallLu& lu, double* first_column) {
+  double norm_a = 0;
+  for (int r = 0; r < n; ++r) {
+    double row = 0;
+    for (int c = 0; c < n; ++c) row += std::abs(a[c * n + r]);
+    norm_a = std::max(norm_a, row);
+  }
+  std::array<double, kMaxN * kMaxN> inv;  // column-major
+  for (int c = 0; c < n; ++c) lu.solve_unit(c, inv.data() + c * n);
+  double norm_inv = 0, max_inv = 0;
+  for (int r = 0; r < n; ++r) {
+    double row = 0;
+    for (int c = 0; c < n; ++c) {
+      row += std::abs(inv[c * n + r]);
+      max_inv = std::max(max_inv, std::abs(inv[c * n + r]));
+    }
+    norm_inv = std::max(norm_inv, row);
+  }
+  const double cond = norm_a * norm_inv;
+  if (!(cond < 1e10)) return -1;
+  // Forward error bound of the computed inverse (generous constant): entries above it have a
+  // certain sign; a row whose leading entries fall below it is undecided.
+  const double err = 16.0 * n * std::numeric_limits<double>::epsilon() * cond * max_inv;
+  for (int r = 0; r < n; ++r)
+    if (std::abs(inv[r]) <= err) return -1;  // a leading entry may be an exact zero
+  for (int r = 0; r < n; ++r) first_column[r] = inv[r];
+  for (int r = 0; r < n; ++r)
+    if (inv[r] < 0) return 0;
+  return 1;
+}
+
+// A vertex exactly on M (F(v_j) = 0: column j of M is e_0), the degenerate case that lattice
+// vertices on M make common. With column j moved first, M = [[1, 1ᵀ], [0, G]] for the k × k matrix G
+// of F at the other vertices, so M⁻¹ = [[1, −1ᵀG⁻¹], [0, G⁻¹]]: λ = e_j, row j of M⁻¹ is positive, and
+// the other rows are (0, rows of G⁻¹). τ is transverse iff every row of G⁻¹ is lexicographically
+// positive: a k × k question, usually decided in floating point. −1: undecided.
+int vertex_on_manifold(int n, const double* m, int j, double* lambda) {
+  const int k = n - 1;
+  std::array<double, kMaxN * kMaxN> g;  // column-major, k × k
+  for (int c = 0, gc = 0; c < n; ++c) {
+    if (c == j) continue;
+    for (int r = 1; r < n; ++r) g[gc * k + (r - 1)] = m[c * n + r];
+    ++gc;
+  }
+  SmallLu lu;
+  if (!lu.factor(k, g.data())) return -1;
+  std::array<double, kMaxN> unused;
+  const int signs = certified_row_signs(k, g.data(), lu, unused.data());
+  if (signs != 1) return signs;
+  for (int r = 0; r < n; ++r) lambda[r] = r == j ? 1.0 : 0.0;
+  return 1;
+}
+
 }  // namespace
 
 bool lexicographic_solve(int n, const double* m, double* lambda) {
@@ -97,6 +154,19 @@ bool lexicographic_solve(int n, const double* m, double* lambda) {
     }
     if (all_pos || all_neg) return false;
   }
+  // Vertices exactly on M: two make M singular (two columns e_0); one is decided on the smaller system.
+  int on_manifold = -1;
+  for (int c = 0; c < n; ++c) {
+    bool zero = true;
+    for (int r = 1; r < n && zero; ++r) zero = m[c * n + r] == 0;
+    if (!zero) continue;
+    if (on_manifold >= 0) return false;
+    on_manifold = c;
+  }
+  if (on_manifold >= 0) {
+    const int decided = vertex_on_manifold(n, m, on_manifold, lambda);
+    return decided >= 0 ? decided == 1 : exact_solve(n, m, lambda);
+  }
   SmallLu lu;
   if (!lu.factor(n, m)) return exact_solve(n, m, lambda);
   // Usually λ = M⁻¹·e₀ alone decides: a certainly negative λ_j rejects, all certainly positive
@@ -115,39 +185,9 @@ bool lexicographic_solve(int n, const double* m, double* lambda) {
     }
     if (positive) return true;
   }
-  // Undecided: the whole inverse, column by column, and the lexicographic signs of its rows.
-  double norm_m = 0;
-  for (int r = 0; r < n; ++r) {
-    double row = 0;
-    for (int c = 0; c < n; ++c) row += std::abs(m[c * n + r]);
-    norm_m = std::max(norm_m, row);
-  }
-  std::array<double, kMaxN * kMaxN> inv;  // column-major
-  for (int c = 0; c < n; ++c) lu.solve_unit(c, inv.data() + c * n);
-  double norm_inv = 0, max_inv = 0;
-  for (int r = 0; r < n; ++r) {
-    double row = 0;
-    for (int c = 0; c < n; ++c) {
-      row += std::abs(inv[c * n + r]);
-      max_inv = std::max(max_inv, std::abs(inv[c * n + r]));
-    }
-    norm_inv = std::max(norm_inv, row);
-  }
-  const double cond = norm_m * norm_inv;
-  if (!(cond < 1e10)) return exact_solve(n, m, lambda);
-  // Forward error bound of the computed inverse (generous constant): entries above it have a
-  // certain sign; a row whose leading entries fall below it is decided exactly.
-  const double err = 16.0 * n * std::numeric_limits<double>::epsilon() * cond * max_inv;
-  bool transverse = true;
-  for (int r = 0; r < n && transverse; ++r) {
-    int c = 0;
-    while (c < n && std::abs(inv[c * n + r]) <= err) ++c;
-    if (c > 0) return exact_solve(n, m, lambda);  // a leading entry may be an exact zero
-    transverse = inv[r] > 0;
-  }
-  if (!transverse) return false;
-  for (int r = 0; r < n; ++r) lambda[r] = inv[r];
-  return true;
+  // Undecided: the whole inverse, and the lexicographic signs of its rows.
+  const int signs = certified_row_signs(n, m, lu, lambda);
+  return signs >= 0 ? signs == 1 : exact_solve(n, m, lambda);
 }
 
 }  // namespace coxmesh
