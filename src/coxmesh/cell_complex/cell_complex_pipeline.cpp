@@ -48,14 +48,15 @@ void set_facets(CellLevel& level, std::span<const std::uint64_t> incidences, Wor
   });
 }
 
-// next_level_plain (cell_complex.cpp) in a pipeline. The cells of level j − 1 go in batches of chunks, in three stages: the cofaces of each chunk are enumerated, packed
-// and hashed (a task per chunk); the batch is numbered, inserting its cofaces into the index in
-// order (one task: the only serial step); its incidences are written out (a task per chunk). A
-// parallel round numbers batch b while it enumerates batch b + 1 and writes out batch b − 1, with
-// three sets of buffers; the numbering starts at once, on the core that enumerated the batch. The
-// result is the same for any number of workers; batches bound the extra memory.
 }  // namespace
 
+// next_level_plain (cell_complex.cpp) in a pipeline. The cells of level j − 1 go in batches of
+// chunks, in three stages: the cofaces of each chunk are enumerated, packed and hashed (a task per
+// chunk); the batch is numbered, inserting its cofaces into the index in order (one task: the only
+// serial step); its incidences are written out (a task per chunk). A parallel round numbers batch b
+// while it enumerates batch b + 1 and writes out batch b − 1, with three sets of buffers; the
+// numbering starts at once, on the core that enumerated the batch. The result is the same for any
+// number of workers; batches bound the extra memory.
 CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& pool) {
   // Batches of up to 8192 cells, and at most 1/32 of the level: the three sets of buffers stay a
   // small part of the memory of the complex.
