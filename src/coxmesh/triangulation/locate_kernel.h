@@ -12,7 +12,9 @@
 
 #if defined(__GNUC__)  // GCC and Clang: the kernel compiles
 #define COXMESH_HAS_LOCATE_KERNEL 1
-#if defined(__x86_64__) || defined(__i386__)  // Triangulation::locate and lattice_coordinates use it
+// Triangulation::locate and lattice_coordinates use it on x86 (-DCOXMESH_PORTABLE_LOCATE: the plain
+// version there too, to try the portable path).
+#if (defined(__x86_64__) || defined(__i386__)) && !defined(COXMESH_PORTABLE_LOCATE)
 #define COXMESH_USE_LOCATE_KERNEL 1
 #endif
 #endif
