@@ -30,7 +30,7 @@ void SequentialWalk::walk() {
   Simplex tau;
   CofaceEnumerator cofacets;
   for (; head_ < result_.simplices.size(); ++head_) {
-    if (head_ >= level_end_) {
+    if (head_ >= level_end_) {  // a breadth-first level starts: handed to the oracle at once
       if (!start_level()) return;
       oracle_.prefetch({result_.simplices.key(head_), std::size_t{level_end_ - head_} * packed_words(d_)});
     }
