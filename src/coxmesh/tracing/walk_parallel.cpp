@@ -188,7 +188,7 @@ void ParallelWalk::open_windows(Worker& worker) const {
   build(0, level_);
 }
 
-std::uint32_t ParallelWalk::find_near(const Worker& worker, const std::uint32_t* key, std::uint64_t hash) {
+inline std::uint32_t ParallelWalk::find_near(const Worker& worker, const std::uint32_t* key, std::uint64_t hash) {
   for (int i = 0; i < 2; ++i)
     if (const std::uint32_t id = worker.near[i].find(key, hash); id != PackedKeyIndex::kAbsent)
       return worker.near_range[i].first + id;

@@ -93,7 +93,7 @@ class ParallelWalk {
   void process_chunk(std::uint32_t chunk, std::uint32_t begin, std::uint32_t end, Worker& worker, ChunkOutput& out);
   Found classify_in_level(const Simplex& tau, std::uint32_t chunk, Worker& worker, ChunkOutput& out);
   void open_windows(Worker& worker) const;
-  static std::uint32_t find_near(const Worker& worker, const std::uint32_t* key, std::uint64_t hash);
+  static inline std::uint32_t find_near(const Worker& worker, const std::uint32_t* key, std::uint64_t hash);
   const std::uint32_t* source_key(const std::vector<ChunkOutput>& outputs, std::uint64_t source) const {
     return outputs[source >> 32].inside_keys.data() + static_cast<std::uint32_t>(source) * packed_words(d_);
   }
