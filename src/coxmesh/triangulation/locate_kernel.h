@@ -5,6 +5,7 @@
 // Internal to the triangulation layer (not installed); triangulation.h is the public interface.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include "coxmesh/lattice/simplex.h"
@@ -31,10 +32,25 @@ void lattice_coordinates_plain(const Triangulation& t, const double* x, double* 
 /// The simplex of T containing x: z = Λ^{-1}(x − b), y = ⌊z⌋, and the indices 0..d ordered by
 /// decreasing fractional part, cut into blocks where it drops by more than the tolerance.
 Simplex locate_plain(const Triangulation& t, const double* x);
-/// Barycentric coordinates (dim σ + 1 values) in σ of the point with lattice coordinates z[0..d).
-void barycentric_in_lattice(const Simplex& sigma, int d, const double* z, double* lambda);
 /// Throws InputError for the lattice coordinates z[0..d) of a point out of range (or NaN / Inf).
 [[noreturn]] void throw_out_of_range(const double* z, int d);
+
+/// Barycentric coordinates (dim σ + 1 values) in σ of the point with lattice coordinates z[0..d).
+/// With ζ_j the mean of z_i − y_i over the block j of σ (ζ_k = 0): λ_0 = 1 − ζ_0, λ_j = ζ_{j−1} − ζ_j.
+inline void barycentric_in_lattice(const Simplex& sigma, int d, const double* z, double* lambda) {
+  std::array<double, kMaxDimension + 1> zeta{};
+  std::array<int, kMaxDimension + 1> count{};
+  const int k = sigma.k;
+  for (int i = 0; i < d; ++i)
+    if (sigma.block[i] < k) {
+      zeta[sigma.block[i]] += z[i] - sigma.y[i];
+      ++count[sigma.block[i]];
+    }
+  for (int j = 0; j < k; ++j) zeta[j] /= count[j];  // blocks before the last hold an index < d
+  zeta[k] = 0;
+  lambda[0] = 1 - zeta[0];
+  for (int j = 1; j <= k; ++j) lambda[j] = zeta[j - 1] - zeta[j];
+}
 
 #if defined(COXMESH_HAS_LOCATE_KERNEL)
 /// The kernel: the same results. padded_inverse = Λ^{-1} padded to padded_rows(d) rows

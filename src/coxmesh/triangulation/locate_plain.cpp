@@ -58,20 +58,4 @@ Simplex locate_plain(const Triangulation& t, const double* x) {
   return s;
 }
 
-// With ζ_j the mean of z_i − y_i over the block j of σ (ζ_k = 0): λ_0 = 1 − ζ_0, λ_j = ζ_{j−1} − ζ_j.
-void barycentric_in_lattice(const Simplex& sigma, int d, const double* z, double* lambda) {
-  std::array<double, kMaxDimension + 1> zeta{};
-  std::array<int, kMaxDimension + 1> count{};
-  const int k = sigma.k;
-  for (int i = 0; i < d; ++i)
-    if (sigma.block[i] < k) {
-      zeta[sigma.block[i]] += z[i] - sigma.y[i];
-      ++count[sigma.block[i]];
-    }
-  for (int j = 0; j < k; ++j) zeta[j] /= count[j];  // blocks before the last hold an index < d
-  zeta[k] = 0;
-  lambda[0] = 1 - zeta[0];
-  for (int j = 1; j <= k; ++j) lambda[j] = zeta[j - 1] - zeta[j];
-}
-
 }  // namespace coxmesh::locate
