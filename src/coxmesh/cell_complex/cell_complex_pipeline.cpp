@@ -1,0 +1,149 @@
+// Thesis §4.2: the construction of a level of the cell complex (next_level_plain in
+// cell_complex.cpp) as a pipeline of batches over a pool of workers: the same level, numbering
+// included, for every number of workers (tests/cell_complex/test_cell_complex.cpp).
+#include <algorithm>
+#include <atomic>
+
+#include "coxmesh/cell_complex/next_level.h"
+#include "coxmesh/lattice/cofaces.h"
+#include "coxmesh/util/huge_page_allocator.h"
+
+namespace coxmesh::cells {
+
+namespace {
+
+// Facet lists from the incidences (cell << 32) | facet, in discovery order: a counting sort by
+// cell keeps each cell's facets in increasing order. Worker p sorts the p-th range of cells: it
+// reads every incidence and skips the other ranges', so no counter is written by two workers. The
+// arrays are not zeroed beforehand: each worker writes its own range first (and takes its page
+// faults), and the prefix sums are per range, then shifted by the ranges before.
+void set_facets(CellLevel& level, std::span<const std::uint64_t> incidences, WorkerPool& pool) {
+  const std::uint64_t n = level.size(), parts = static_cast<std::uint64_t>(pool.size());
+  const auto lo = [&](std::uint64_t p) { return n * p / parts; };
+  const auto for_own_incidences = [&](std::uint64_t p, auto&& f) {
+    const std::uint64_t first = lo(p), width = lo(p + 1) - first;
+    for (std::uint64_t e : incidences)
+      if ((e >> 32) - first < width) f(e >> 32, static_cast<std::uint32_t>(e));
+  };
+  level.facet_offsets.resize(n + 1);
+  level.facet_offsets[0] = 0;
+  std::uint32_t* ends = level.facet_offsets.data() + 1;  // ends[c] = offsets[c + 1]
+  std::vector<std::uint64_t> totals(parts);
+  pool.run(parts, [&](std::size_t p, int) {
+    std::fill(ends + lo(p), ends + lo(p + 1), 0u);
+    for_own_incidences(p, [&](std::uint64_t c, std::uint32_t) { ++ends[c]; });
+    std::uint64_t sum = 0;
+    for (std::uint64_t c = lo(p); c < lo(p + 1); ++c) ends[c] = static_cast<std::uint32_t>(sum += ends[c]);
+    totals[p] = sum;
+  });
+  level.facet_ids.resize(incidences.size());
+  pool.run(parts, [&](std::size_t p, int) {
+    std::uint64_t base = 0;
+    for (std::size_t q = 0; q < p; ++q) base += totals[q];
+    std::vector<std::uint32_t> next(lo(p + 1) - lo(p));  // where the next facet of each cell goes
+    for (std::uint64_t c = lo(p); c < lo(p + 1); ++c)  // (a cell starts where the one before ends)
+      next[c - lo(p)] = static_cast<std::uint32_t>(c == lo(p) ? base : ends[c - 1] + base);
+    for (std::uint64_t c = lo(p); c < lo(p + 1); ++c) ends[c] += static_cast<std::uint32_t>(base);
+    for_own_incidences(p, [&](std::uint64_t c, std::uint32_t facet) { level.facet_ids[next[c - lo(p)]++] = facet; });
+  });
+}
+
+}  // namespace
+
+// next_level_plain (cell_complex.cpp) in a pipeline. The cells of level j − 1 go in batches of
+// chunks, in three stages: the cofaces of each chunk are enumerated, packed and hashed (a task per
+// chunk); the batch is numbered, inserting its cofaces into the index in order (one task: the only
+// serial step); its incidences are written out (a task per chunk). A parallel round numbers batch b
+// while it enumerates batch b + 1 and writes out batch b − 1, with three sets of buffers; the
+// numbering starts at once, on the core that enumerated the batch. The result is the same for any
+// number of workers; batches bound the extra memory.
+CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& pool) {
+  // Batches of up to 8192 cells, and at most 1/32 of the level: the three sets of buffers stay a
+  // small part of the memory of the complex.
+  constexpr std::uint32_t kChunk = 256, kMaxChunksPerBatch = 32;
+  const std::uint32_t chunks_per_batch = std::clamp<std::uint32_t>(prev.size() / (32 * kChunk), 1, kMaxChunksPerBatch);
+  const std::uint32_t batch_cells = kChunk * chunks_per_batch;
+  const int words = packed_words(d);
+  struct alignas(64) Chunk {  // (padded: neighbouring chunks are filled by different workers)
+    std::vector<std::uint32_t> keys, facets, ids;
+    std::vector<std::uint64_t> hashes;
+    std::size_t offset = 0;  // of its incidences
+  };
+  CellLevel level;
+  level.simplices = PackedKeyIndex(words);
+  level.simplices.reserve(prev.size());
+  UninitializedHugeVector<std::uint64_t> incidences;  // (cell << 32) | facet, in discovery order
+  std::vector<Chunk> buffers[3];
+  for (auto& b : buffers) b.resize(chunks_per_batch);
+  const std::int64_t batches = (prev.size() + batch_cells - 1) / batch_cells;
+  const auto chunks_of = [&](std::int64_t batch) -> std::size_t {
+    if (batch < 0 || batch >= batches) return 0;
+    return (std::min<std::uint64_t>(prev.size(), (batch + 1) * batch_cells) - batch * batch_cells + kChunk - 1) / kChunk;
+  };
+  const auto enumerate = [&](std::int64_t batch, std::size_t t) {
+    Chunk& out = buffers[batch % 3][t];
+    out.keys.clear(), out.facets.clear(), out.hashes.clear();
+    CofaceEnumerator cofaces;
+    std::uint32_t key[packed_words(kMaxDimension)];
+    const std::uint32_t a = static_cast<std::uint32_t>(batch * batch_cells + t * kChunk);
+    const std::uint32_t b = std::min(prev.size(), a + kChunk);
+    for (std::uint32_t c = a; c < b; ++c) {
+      cofaces.reset(prev.simplices.simplex(c, d), l);
+      while (const Simplex* nu = cofaces.next()) {
+        pack(*nu, key);
+        out.keys.insert(out.keys.end(), key, key + words);
+        out.hashes.push_back(hash_words(key, words));
+        out.facets.push_back(c);
+      }
+    }
+    out.ids.resize(out.hashes.size());
+  };
+  std::vector<KeyRun> runs;
+  const auto number = [&](std::int64_t batch) {
+    runs.clear();
+    for (std::size_t t = 0; t < chunks_of(batch); ++t) {
+      Chunk& c = buffers[batch % 3][t];
+      runs.push_back({c.keys.data(), c.hashes.data(), c.hashes.size(), c.ids.data()});
+    }
+    level.simplices.insert_runs(runs);
+  };
+  const auto write_out = [&](std::int64_t batch, std::size_t t) {
+    const Chunk& in = buffers[batch % 3][t];
+    for (std::size_t r = 0; r < in.ids.size(); ++r)
+      incidences[in.offset + r] = (static_cast<std::uint64_t>(in.ids[r] & ~PackedKeyIndex::kNewBit) << 32) | in.facets[r];
+  };
+  for (std::int64_t round = 0; round <= batches + 1; ++round) {
+    const std::int64_t numbered = round - 1, written = round - 2;
+    if (written == 0) {  // room for the whole level at batch 0's rate: no copies as it grows
+      std::size_t occurrences = 0;
+      for (std::size_t t = 0; t < chunks_of(0); ++t) occurrences += buffers[0][t].ids.size();
+      const std::size_t cells0 = std::min(prev.size(), batch_cells);
+      incidences.reserve(occurrences * prev.size() / cells0 * 9 / 8);
+      // (the index at batch 0's rate too, which came out 0-10 % above the level's size)
+      const std::size_t cells = std::size_t{level.simplices.size()} * prev.size() / cells0;
+      if (batches > 2) level.simplices.reserve(std::min<std::size_t>(cells, PackedKeyIndex::kMaxEntries));
+    }
+    for (std::size_t t = 0; t < chunks_of(written); ++t) {
+      Chunk& c = buffers[written % 3][t];
+      c.offset = incidences.size();
+      incidences.resize(incidences.size() + c.ids.size());
+    }
+    // One lane per worker: the numbering lane numbers, then helps with the chunks. Lanes are taken
+    // in order, lane 0 by the calling thread as a rule, so with the numbering lane turning round by
+    // round a batch is mostly numbered by the worker that enumerated it: its keys are in that
+    // core's caches (numbering them on the other core cost 15 % more).
+    const std::size_t n_enumerate = chunks_of(round), n_chunks = n_enumerate + chunks_of(written);
+    const std::size_t lanes = static_cast<std::size_t>(pool.size());
+    const std::size_t numbering_lane = static_cast<std::size_t>(round) % lanes;
+    std::atomic<std::size_t> next_chunk{0};
+    pool.run(lanes, [&](std::size_t lane, int) {
+      if (lane == numbering_lane && chunks_of(numbered) > 0) number(numbered);
+      for (std::size_t t; (t = next_chunk.fetch_add(1)) < n_chunks;)
+        t < n_enumerate ? enumerate(round, t) : write_out(written, t - n_enumerate);
+    });
+  }
+  set_facets(level, incidences, pool);
+  return level;
+}
+
+}  // namespace coxmesh::cells

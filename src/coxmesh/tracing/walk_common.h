@@ -1,0 +1,82 @@
+// Thesis §4.2: what the sequential walk (walk_sequential.cpp) and its level-synchronous parallel
+// variant (walk_parallel.cpp) share: how a tested k-simplex is classified, how the walk finds the
+// other transverse facet of a cofacet, how it names the cofacet a simplex was discovered through,
+// and where a cofacet crosses the domain's boundary. Internal to tracing (not installed).
+#pragma once
+
+#include <cstdint>
+
+#include "coxmesh/lattice/faces.h"
+#include "coxmesh/lattice/simplex.h"
+#include "coxmesh/oracle/intersection_oracle.h"
+
+namespace coxmesh::walk {
+
+// What the walk knows of a tested k-simplex.
+enum class Kind : std::uint8_t {
+  miss,     // not transverse
+  inside,   // transverse inside the domain: in S
+  outside,  // transverse, D̂ ≥ 0 at its point: its cofacets cross the boundary
+};
+struct Found {
+  Kind kind;
+  std::uint32_t index;  // where the walk keeps the simplex (S id, or its point and D̂)
+  int facet = -1;       // which facet of μ it is (the index of the vertex of μ it lacks)
+};
+
+// The payload of a tested simplex that is not transverse (otherwise: where its point and D̂ are).
+constexpr std::uint32_t kMiss = 0xFFFFFFFFu;
+
+// The lattice vertex w of a cofacet μ of τ not in τ, as 2 bits per coordinate of w − y(τ) ∈ {−1, 0, 1}
+// (w and y(τ) are vertices of one simplex): with τ, it names μ exactly in 62 bits.
+constexpr std::uint64_t kNoCofacet = ~std::uint64_t{0};  // "11" never occurs as a pair of bits
+inline std::uint64_t cofacet_code(const std::int32_t* w, const std::uint32_t* tau_key, int d) {
+  std::uint64_t code = 0;
+  for (int i = 0; i < d; ++i)
+    code |= static_cast<std::uint64_t>(w[i] - static_cast<std::int32_t>(tau_key[i]) + 1) << (2 * i);
+  return code;
+}
+
+// The code of the cofacet μ seen from its facet without vertex `facet` (packed: `facet_key`): what
+// the walk records for a simplex discovered through μ.
+inline std::uint64_t arrival_code(const Simplex& mu, int facet, const std::uint32_t* facet_key, int d) {
+  std::int32_t v[kMaxDimension];
+  mu.vertex(facet, v);
+  return cofacet_code(v, facet_key, d);
+}
+
+// The other transverse facet of a cofacet μ of τ ∈ S: M̂ ∩ μ is a segment between exactly two
+// transverse facets of μ, τ and this one (thesis §4.2). The oracle's door-in/door-out guess is
+// tested first; without a guess, or when it is wrong, every facet is. `test` classifies a facet.
+// μ is skipped (miss) when it is the cofacet τ was discovered through (`arrival`, a cofacet_code):
+// its other transverse facet is τ's discoverer, already in S.
+template <class Test>
+Found other_transverse_facet(IntersectionOracle& oracle, bool pivots, const Simplex& tau, const std::uint32_t* tau_key,
+                             std::uint64_t arrival, const Simplex& mu, Test&& test) {
+  const int entry = extra_vertex_index(tau, mu);  // μ without its vertex `entry` is τ
+  std::int32_t v[kMaxDimension];
+  mu.vertex(entry, v);
+  if (arrival != kNoCofacet && cofacet_code(v, tau_key, tau.d) == arrival) return {Kind::miss, 0};
+  int guess = -1;
+  if (pivots) {
+    if (const int g = oracle.pivot_exit(v); g >= 0) {
+      guess = g < entry ? g : g + 1;
+      if (Found f = test(facet_without(mu, guess)); f.kind != Kind::miss) return f.facet = guess, f;
+    }
+  }
+  for (int j = 0; j <= mu.k; ++j)
+    if (j != entry && j != guess)
+      if (Found f = test(facet_without(mu, j)); f.kind != Kind::miss) return f.facet = j, f;
+  return {Kind::miss, 0};
+}
+
+// A cofacet μ with one transverse facet inside the domain (point p, D̂ = dp < 0) and one outside
+// (q[0..d), D̂ = q[d] ≥ 0): μ ∩ M̂ is the segment pq and D̂ is linear on it, so μ ∩ M̂ ∩ ∂D̂ is the
+// point where D̂ crosses 0. Appends its d coordinates to `out`.
+template <class Points>
+void append_boundary_point(Points& out, const double* p, double dp, const double* q, int d) {
+  const double t = dp / (dp - q[d]);  // dp < 0 ≤ q[d]
+  for (int i = 0; i < d; ++i) out.push_back(p[i] + t * (q[i] - p[i]));
+}
+
+}  // namespace coxmesh::walk

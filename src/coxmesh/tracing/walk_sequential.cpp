@@ -1,0 +1,165 @@
+// Thesis §4.2 (manifold tracing, with boundary): the walk, one simplex at a time, and the search
+// for the simplices it starts from. The one hot loop of coxmesh.
+#include "coxmesh/tracing/walk_sequential.h"
+
+#include <sstream>
+
+#include "coxmesh/lattice/cofaces.h"
+#include "coxmesh/lattice/faces.h"
+
+namespace coxmesh::walk {
+
+SequentialWalk::SequentialWalk(const Triangulation& t, IntersectionOracle& oracle, const TraceOptions& options)
+    : t_(t), oracle_(oracle), options_(options), d_(t.dimension()), k_(oracle.codimension()),
+      others_(packed_words(d_)) {
+  result_.ambient_dimension = d_;
+  result_.codimension = k_;
+  result_.simplices = PackedKeyIndex(packed_words(d_));
+  result_.boundary_simplices = PackedKeyIndex(packed_words(d_));
+}
+
+TraceResult SequentialWalk::finish() {
+  result_.oracle_calls += calls_;
+  return std::move(result_);
+}
+
+// The walk: for each τ of S in breadth-first order, for each cofacet μ of τ, the other transverse
+// facet of μ is either a simplex inside the domain (appended to S if new: classify) or outside it
+// (μ then crosses the boundary, at a point of S_∂).
+void SequentialWalk::walk() {
+  Simplex tau;
+  CofaceEnumerator cofacets;
+  for (; head_ < result_.simplices.size(); ++head_) {
+    if (head_ >= level_end_) {  // a breadth-first level starts: handed to the oracle at once
+      if (!start_level()) return;
+      oracle_.prefetch({result_.simplices.key(head_), std::size_t{level_end_ - head_} * packed_words(d_)});
+    }
+    tau = result_.simplices.simplex(head_, d_);
+    const bool pivots = oracle_.pivot_enter(tau);
+    cofacets.reset(tau, k_ + 1);
+    while (const Simplex* cofacet = cofacets.next()) {
+      const Simplex& mu = *cofacet;
+      const std::uint32_t known = result_.simplices.size();
+      // (τ's key is fetched per cofacet: classify appends to S, which may move the keys)
+      const Found f = other_transverse_facet(oracle_, pivots, tau, result_.simplices.key(head_), arrivals_[head_], mu,
+                                             [this](const Simplex& s) { return classify(s); });
+      if (f.kind == Kind::outside) add_boundary(mu, head_, outside_.data() + f.index);
+      if (f.kind == Kind::inside && f.index >= known)  // discovered now, through μ
+        arrivals_[f.index] = arrival_code(mu, f.facet, result_.simplices.key(f.index), d_);
+    }
+  }
+}
+
+// The simplex limit is checked where a breadth-first level starts, in the sequential and the
+// parallel walk alike, so a truncated result is also the same for every thread count.
+bool SequentialWalk::start_level() {
+  level_end_ = result_.simplices.size();
+  if (result_.simplices.size() >= options_.max_simplices) {
+    result_.status = TraceStatus::max_simplices_reached;
+    return false;
+  }
+  if (options_.progress && result_.simplices.size() >= last_progress_ + options_.progress_interval) {
+    last_progress_ = result_.simplices.size();
+    options_.progress(last_progress_);
+  }
+  return true;
+}
+
+// Looks τ up in S, then among the other tested simplices; only if it is in neither is the oracle
+// asked, and τ appended to S (inside the domain) or to the others.
+Found SequentialWalk::classify(const Simplex& tau) {
+  std::uint32_t key[packed_words(kMaxDimension)];
+  pack(tau, key);
+  const std::uint64_t h = hash_words(key, packed_words(d_));
+  std::size_t slot;  // where τ goes in S if it is new and inside
+  if (std::uint32_t id = result_.simplices.find(key, h, slot); id != PackedKeyIndex::kAbsent) return {Kind::inside, id};
+  if (std::uint32_t id = others_.find(key, h); id != PackedKeyIndex::kAbsent) {
+    const std::uint32_t p = other_payload_[id];
+    return p == kMiss ? Found{Kind::miss, 0} : Found{Kind::outside, p};
+  }
+  ++calls_;
+  point_.resize(d_);
+  const Intersection x = oracle_.intersect(tau, point_.data());
+  std::uint32_t payload = kMiss;
+  if (x.hit) {
+    if (x.domain < 0) {
+      const std::uint32_t id = result_.simplices.insert_at(slot, key, h);
+      result_.points.insert(result_.points.end(), point_.begin(), point_.end());
+      domain_values_.push_back(x.domain);
+      arrivals_.push_back(kNoCofacet);  // set by the walk
+      return {Kind::inside, id};
+    } else {
+      payload = static_cast<std::uint32_t>(outside_.size());
+      outside_.insert(outside_.end(), point_.begin(), point_.end());
+      outside_.push_back(x.domain);
+    }
+  }
+  others_.insert(key, h);
+  other_payload_.push_back(payload);
+  return payload == kMiss ? Found{Kind::miss, 0} : Found{Kind::outside, payload};
+}
+
+// μ, a cofacet of S[inside], crosses the boundary; `outside` = point and D̂ of its other
+// transverse facet.
+void SequentialWalk::add_boundary(const Simplex& mu, std::uint32_t inside, const double* outside) {
+  if (!result_.boundary_simplices.insert(mu).second) return;
+  const double* p = result_.points.data() + static_cast<std::size_t>(inside) * d_;
+  append_boundary_point(result_.boundary_points, p, domain_values_[inside], outside, d_);
+}
+
+namespace {
+std::string point_text(std::span<const double> x) {
+  std::ostringstream os;
+  os.precision(10);
+  os << "(";
+  for (std::size_t i = 0; i < x.size(); ++i) os << (i ? "," : "") << x[i];
+  os << ")";
+  return os.str();
+}
+}  // namespace
+
+void SequentialWalk::add_seed(std::span<const double> seed, bool must_succeed) {
+  if (static_cast<int>(seed.size()) != d_)
+    throw InputError("the seed " + point_text(seed) + " has " + std::to_string(seed.size()) +
+                     " coordinates, expected " + std::to_string(d_));
+  const Simplex sigma = t_.locate(seed);
+  // Ring 0: the d-simplices containing the seed, at most 720 of them (a seed on a lattice vertex
+  // lies in (d+1)! of them, 3.6 million for d = 9: see generic_seed); ring r+1: the neighbours of
+  // ring r across facets.
+  PackedKeyIndex seen(packed_words(d_));
+  std::vector<Simplex> ring, next;
+  CofaceEnumerator cofaces(sigma, d_);
+  for (Simplex s; ring.size() < 720 && cofaces.next(s);)
+    if (seen.insert(s).second) ring.push_back(s);
+  bool outside_hit = false;
+  for (int r = 0; r <= options_.seed_search_rings && !ring.empty(); ++r) {
+    bool inside_hit = false;
+    for (const Simplex& s : ring) {
+      FaceEnumerator faces(s, k_);
+      for (Simplex tau; faces.next(tau);) {
+        const Found f = classify(tau);
+        inside_hit |= f.kind == Kind::inside;
+        outside_hit |= f.kind == Kind::outside;
+      }
+    }
+    if (inside_hit) return;
+    next.clear();
+    for (const Simplex& s : ring) {
+      FaceEnumerator faces(s, d_ - 1);
+      for (Simplex f; faces.next(f);) {
+        CofaceEnumerator across(f, d_);
+        for (Simplex n; across.next(n);)
+          if (seen.insert(n).second) next.push_back(n);
+      }
+    }
+    ring.swap(next);
+  }
+  if (!must_succeed) return;
+  if (outside_hit)
+    throw SeedError("the seed " + point_text(seed) + " is outside the domain: the manifold near it has D >= 0");
+  throw SeedError("no simplex within " + std::to_string(options_.seed_search_rings) + " rings of the seed " +
+                  point_text(seed) +
+                  " meets the manifold: the seed is too far from it, or the triangulation is too coarse for it");
+}
+
+}  // namespace coxmesh::walk

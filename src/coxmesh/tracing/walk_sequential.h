@@ -1,0 +1,59 @@
+// Thesis §4.2: the manifold tracing algorithm, one simplex at a time. Internal to tracing (not
+// installed); trace_manifold.h is the public interface.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "coxmesh/tracing/trace_manifold.h"
+#include "coxmesh/tracing/walk_common.h"
+
+namespace coxmesh::walk {
+
+class ParallelWalk;
+
+// The walk and its state. S lives in the result and is also the breadth-first queue (S[head..]);
+// every other tested k-simplex is remembered in `others_` (not transverse, or transverse outside
+// the domain with its point), so the oracle sees each k-simplex at most once.
+//
+//   SequentialWalk w(T, oracle, options);
+//   for (seed : seeds) w.add_seed(seed, true), w.walk();
+//   TraceResult r = w.finish();
+class SequentialWalk {
+ public:
+  SequentialWalk(const Triangulation& t, IntersectionOracle& oracle, const TraceOptions& options);
+
+  // Puts into S the k-simplices meeting M̂ inside the domain among the faces of the d-simplices
+  // around the seed (up to options.seed_search_rings rings). Throws SeedError if there are none
+  // and must_succeed.
+  void add_seed(std::span<const double> seed, bool must_succeed);
+  // Walks from every simplex of S not walked yet, until S is closed (or the simplex limit).
+  void walk();
+  // The result; oracle_calls counts this walk's calls, function_evaluations is left to the caller.
+  TraceResult finish();
+
+ private:
+  friend class ParallelWalk;  // the level-synchronous variant: appends to S itself
+
+  Found classify(const Simplex& tau);
+  void add_boundary(const Simplex& mu, std::uint32_t inside, const double* outside);
+  bool start_level();  // false when the simplex limit stops the walk
+
+  const Triangulation& t_;
+  IntersectionOracle& oracle_;
+  const TraceOptions& options_;
+  const int d_, k_;
+  TraceResult result_;
+  UninitializedHugeVector<double> domain_values_;    // D̂ at each point of S
+  UninitializedHugeVector<std::uint64_t> arrivals_;  // per simplex of S: the cofacet it was discovered through
+  PackedKeyIndex others_;
+  std::vector<std::uint32_t> other_payload_;  // kMiss or index into outside_
+  std::vector<double> outside_;               // (d + 1) per transverse simplex outside: point, D̂
+  std::uint32_t head_ = 0;                    // S[head_..] is the breadth-first queue
+  std::uint32_t level_end_ = 0;               // end of the current breadth-first level
+  std::size_t last_progress_ = 0;
+  std::uint64_t calls_ = 0;
+  std::vector<double> point_;
+};
+
+}  // namespace coxmesh::walk
