@@ -58,6 +58,8 @@ mkdir adir
 exits_with "directory as matrix" 1 "is a directory" "$bin" trace --matrix adir --no-output
 exits_with "directory as projection" 1 "is a directory" "$bin" trace --preset flat-torus --project adir -o f.off
 exits_with "directory as points" 1 "is a directory" "$bin" locate --dim 2 --points adir
+exits_with "directory as samples" 1 "is a directory" "$bin" trace --points adir --m 2
+exits_with "samples and a function" 2 "excludes" "$bin" trace --points adir --function x
 
 # A zero set that is not a regular level, a domain tangent to M: meshed, with a warning.
 err=$("$bin" trace --function "(x^2+y^2+z^2-1)^2" --no-output 2>&1 >/dev/null)

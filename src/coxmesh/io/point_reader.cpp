@@ -474,6 +474,8 @@ std::size_t remove_duplicate_points(PointSet& set) {
 }
 
 PointSet read_points(const std::string& path, const PointReadOptions& options) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) fail(path, "is a directory, not a point file");
   std::string ext = fs::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
