@@ -382,7 +382,8 @@ Simplex locate_impl(const Triangulation& t, const double* padded_inverse, const 
 // d > 12: compiled for AVX2 and for the baseline, chosen once at load time (the matrix–vector
 // product is most of the work there); everything it calls is inlined into each version. Not under
 // ThreadSanitizer: the load-time chooser (an ifunc resolver) would run before its runtime and crash.
-#if defined(__SANITIZE_THREAD__)
+// Not with clang either, which refuses target_clones next to flatten (baseline code only there).
+#if defined(__SANITIZE_THREAD__) || defined(__clang__)
 [[gnu::flatten]]
 #else
 [[gnu::target_clones("avx2", "default"), gnu::flatten]]
