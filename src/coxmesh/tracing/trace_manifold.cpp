@@ -93,6 +93,7 @@ class Tracer {
 
   void add_seed(std::span<const double> seed, bool must_succeed);
   void walk();
+  bool stopped() const { return result_.status == TraceStatus::max_simplices_reached; }
   TraceResult finish() {
     for (const Worker& w : workers_) {
       result_.function_evaluations += w.oracle->function_evaluations();
@@ -598,6 +599,9 @@ TraceResult run_tracer(const Triangulation& triangulation, std::vector<Intersect
   if (seeds.empty()) throw SeedError("no seed given");
   Tracer tracer(triangulation, std::move(oracles), options);
   for (const auto& seed : seeds) {
+    // Past the limit, no more seeds: each would add its simplices and a level of walk (thousands
+    // of automatic seeds took S far past the limit).
+    if (tracer.stopped()) break;
     tracer.add_seed(seed, !options.skip_unusable_seeds);
     tracer.walk();
   }
