@@ -1,7 +1,7 @@
 // The command line, run in-process: the input is split into argv tokens at newlines (at most 12).
 // Only cheap commands that read and write no file are run: locate, faces, cofaces (when the
 // simplex has few faces or cofaces), presets, and trace with --no-output -q --threads 1
-// --max-simplices 2000, ambient dimension ≤ 6 and --edge-length ≥ 0.05. Inputs outside these
+// --max-simplices 2000, ambient dimension ≤ 5 and --edge-length ≥ 0.05. Inputs outside these
 // bounds are skipped, not run. Output goes nowhere.
 #include <cstdint>
 #include <iostream>
@@ -44,13 +44,13 @@ bool forbidden(const std::string& a) {
   return false;
 }
 
-// A variable x<i> of an expression with i beyond 6 (the dimension an expression implies).
+// A variable x<i> of an expression with i beyond 5 (the dimension an expression implies).
 bool high_variable(const std::string& a) {
   for (std::size_t i = 0; i + 1 < a.size(); ++i)
     if (a[i] == 'x' && a[i + 1] >= '0' && a[i + 1] <= '9') {
       std::size_t j = i + 1;
       while (j < a.size() && a[j] >= '0' && a[j] <= '9') ++j;
-      if (j - i - 1 > 1 || a[i + 1] > '6') return true;
+      if (j - i - 1 > 1 || a[i + 1] > '5') return true;
     }
   return false;
 }
@@ -83,7 +83,7 @@ bool cheap(const std::vector<std::string>& args) {
       if (high_variable(a)) return false;
     if (const auto dim = option_value(args, "--dim")) {
       const auto v = parse_unsigned(*dim);
-      if (v && *v > 6) return false;
+      if (v && *v > 5) return false;  // (m = 5 in R^6: seconds for the cell complex alone)
     }
     for (const char* name : {"--edge-length", "--scale"})
       if (const auto h = option_value(args, name)) {

@@ -5,7 +5,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 packages=(g++ cmake make libeigen3-dev libcli11-dev nlohmann-json3-dev libmuparser-dev
           libgtest-dev libgmock-dev libbenchmark-dev libgudhi-dev libboost-dev libphat-dev
-          python3-vtk9)  # python3-vtk9: the VTU read-back test uses VTK's own reader
+          python3-vtk9   # python3-vtk9: the VTU read-back test uses VTK's own reader
+          clang libclang-rt-14-dev)  # the fuzz targets (fuzz/run.sh): clang's libFuzzer
 missing=()
 for p in "${packages[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
 if [ ${#missing[@]} -gt 0 ]; then
