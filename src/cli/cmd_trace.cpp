@@ -151,7 +151,9 @@ void run(TraceCliOptions o) {
     }
     return {f, domain};
   };
-  auto [f, domain] = make_problem();
+  // (no structured binding: clang 14 cannot capture one in a lambda)
+  std::pair<FunctionPtr, FunctionPtr> problem = make_problem();
+  FunctionPtr f = std::move(problem.first), domain = std::move(problem.second);
   if (cloud) {
     default_edge = cloud->problem.edge_length;
     name = o.points.file;

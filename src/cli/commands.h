@@ -4,6 +4,9 @@
 #include <CLI/CLI.hpp>
 
 namespace coxmesh::cli {
+/// The whole tool: parses argv, runs the subcommand, returns the exit status (main() of coxmesh).
+int run_cli(int argc, char** argv);
+
 void register_locate(CLI::App& app, int& status);
 void register_faces(CLI::App& app, int& status);  // faces and cofaces
 void register_trace(CLI::App& app, int& status);  // trace and presets

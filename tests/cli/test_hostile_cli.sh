@@ -11,6 +11,9 @@ out=$("$bin" trace --preset sphere --max-simplices 100 --no-output)
 check "limit: no components line" "0" "$(grep -c 'components' <<<"$out" || true)"
 check "limit: topology not computed" "1" "$(grep -c 'topology           not computed' <<<"$out")"
 json=$("$bin" trace --preset sphere --max-simplices 100 --json)
+# The limit holds with thousands of automatic seeds (each used to add its simplices and a level).
+json=$("$bin" trace --function "x1^2+x2^2+x3^2+x4^2-1" --edge-length 0.05 --max-simplices 2000 --json)
+check "limit with many seeds: S stops near it" "True" "$(python3 -c 'import json,sys; print(json.load(sys.stdin)["traced_simplices"] < 4000)' <<<"$json")"
 check "limit: json incomplete" "False" "$(json_get complete <<<"$json")"
 check "limit: json has no betti" "absent" "$(json_get betti <<<"$json")"
 check "limit: json not closed" "False" "$(json_get closed <<<"$json")"

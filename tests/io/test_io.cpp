@@ -203,6 +203,36 @@ TEST(NativeFormat, RejectsDamagedFiles) {
   EXPECT_THROW(read_native("/nonexistent/file.cxm"), InputError);
 }
 
+// Header numbers that are not integers in range, found by fuzzing: a count of 3e69 was cast to an
+// integer (undefined behaviour), a negative one wrapped around.
+TEST(NativeFormat, RejectsHeaderNumbersThatAreNotCounts) {
+  const CellComplex cc = trace(catalogue()[2]);
+  std::stringstream buffer;
+  write_native(buffer, cc);
+  const std::string bytes = buffer.str();
+  const auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string s = bytes;
+    const std::size_t at = s.find(from);
+    EXPECT_LT(at, s.find('\n')) << from;
+    return s.replace(at, from.size(), to);
+  };
+  const auto expect_refused = [](const std::string& s, const std::string& why) {
+    std::stringstream in(s);
+    try {
+      read_native(in, "header.cxm");
+      ADD_FAILURE() << "accepted: " << why;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("not an integer"), std::string::npos) << why << ": " << e.what();
+    }
+  };
+  expect_refused(replaced("\"facet_entries\":0", "\"facet_entries\":3088888888888888888888888888888888e40"), "3e69 facets");
+  expect_refused(replaced("\"facet_entries\":0", "\"facet_entries\":0.5"), "half a facet");
+  expect_refused(replaced("\"ambient_dimension\":3", "\"ambient_dimension\":3.0"), "d = 3.0");
+  expect_refused(replaced("\"ambient_dimension\":3", "\"ambient_dimension\":4294967299"), "d = 2^32 + 3");
+  expect_refused(replaced("\"vertices\":", "\"vertices\":-1,\"x\":"), "-1 vertices");
+  expect_refused(replaced("\"function_evaluations\":", "\"function_evaluations\":1e300,\"x\":"), "1e300 evaluations");
+}
+
 // ---- Polygons and polyhedra ---------------------------------------------------------------------
 
 TEST(Polygons, CyclesFollowEdgeCells) {

@@ -125,7 +125,8 @@ TEST(ParallelTracing, IdenticalWhenTheWalkGraphIsNotSymmetric) {
       TraceOptions options;
       options.threads = threads;
       const TraceResult parallel =
-          trace_manifold(t, [&] { return std::make_unique<ScatteredOracle>(d, k, radius); }, seeds, options);
+          trace_manifold(t, [&, d = d, k = k, radius = radius] { return std::make_unique<ScatteredOracle>(d, k, radius); },
+                         seeds, options);  // (bindings copied: clang 14 cannot capture them)
       expect_identical(sequential, parallel, std::to_string(d) + "/" + std::to_string(k) + ", " + std::to_string(threads) + " threads");
     }
   }

@@ -223,6 +223,22 @@ TEST(TraceManifold, BadInputGivesClearErrors) {
     EXPECT_NE(r.message.find("unbounded"), std::string::npos);
     EXPECT_GE(r.simplices.size(), 2000u);
   }
+  {  // the limit holds across seeds: with many seeds, S stops one level past it, not a level per seed
+    const Triangulation t4 = Triangulation::coxeter(4).with_longest_edge(0.05);
+    FunctionPtr s3 = sphere(3, 4, 1.0);
+    ImplicitOracle oracle(t4, s3);
+    std::vector<std::vector<double>> seeds;
+    for (int i = 0; i < 400; ++i) {  // points of S^3, spread out
+      const double a = 0.1 * i, b = 0.37 * i;
+      seeds.push_back({std::cos(a) * std::cos(b), std::cos(a) * std::sin(b), std::sin(a) * std::cos(2 * b),
+                       std::sin(a) * std::sin(2 * b)});
+    }
+    TraceOptions options;
+    options.max_simplices = 100;
+    const TraceResult r = trace_manifold(t4, oracle, seeds, options);
+    EXPECT_EQ(r.status, TraceStatus::max_simplices_reached);
+    EXPECT_LT(r.simplices.size(), 2000u);
+  }
   {  // a box is a domain: the half sphere it cuts out is a closed disk (χ = 1, Betti 1 0 0)
     ImplicitOracle oracle(t3, s2, box_domain(Box{{0, -2, -2}, {2, 2, 2}}));
     TraceResult r = trace_manifold(t3, oracle, {s2->seed()});

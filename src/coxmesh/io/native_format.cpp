@@ -42,6 +42,14 @@ struct Reader {
   }
 };
 
+// A header number that must be an integer in 0..max. get<>() alone would convert a float with a
+// cast (undefined behaviour when out of range, e.g. a count written as 3e69) and wrap integers.
+std::uint64_t header_integer(const nlohmann::json& v, std::uint64_t max, const Reader& r, const char* what) {
+  if (!v.is_number_unsigned() || v.get<std::uint64_t>() > max)
+    r.fail(std::string("bad header: ") + what + " is not an integer in range");
+  return v.get<std::uint64_t>();
+}
+
 // Checks that a packed key is the canonical form of a simplex of dimension k in R^d.
 bool valid_key(const std::uint32_t* key, int d, int k) {
   const Simplex s = unpack(key, d);
@@ -126,9 +134,9 @@ NativeFile read_native(std::istream& in, const std::string& name) {
   int d = 0, m = 0, words = 0;
   std::uint64_t n0 = 0, nb0 = 0;
   try {
-    d = h.at("ambient_dimension").get<int>();
-    m = h.at("manifold_dimension").get<int>();
-    words = h.at("key_words").get<int>();
+    d = static_cast<int>(header_integer(h.at("ambient_dimension"), kMaxDimension, r, "ambient_dimension"));
+    m = static_cast<int>(header_integer(h.at("manifold_dimension"), kMaxDimension, r, "manifold_dimension"));
+    words = static_cast<int>(header_integer(h.at("key_words"), packed_words(kMaxDimension), r, "key_words"));
     if (d < 1 || d > kMaxDimension || m < 0 || m >= d || words != packed_words(d)) r.fail("inconsistent dimensions in the header");
     const auto& levels_in = h.at("interior");
     const auto& levels_bd = h.at("boundary");
@@ -137,7 +145,8 @@ NativeFile read_native(std::istream& in, const std::string& name) {
     int kind = 0;
     for (const auto* levels : {&levels_in, &levels_bd}) {
       for (const auto& l : *levels) {
-        const std::uint64_t n = l.at("cells").get<std::uint64_t>(), f = l.at("facet_entries").get<std::uint64_t>();
+        const std::uint64_t n = header_integer(l.at("cells"), PackedKeyIndex::kAbsent, r, "cells");
+        const std::uint64_t f = header_integer(l.at("facet_entries"), 1ull << 32, r, "facet_entries");
         const bool bf = l.at("boundary_facet").get<bool>();
         if (n >= PackedKeyIndex::kAbsent || f >= (1ull << 32)) r.fail("too many cells in a level");
         shapes[kind].push_back({n, f});
@@ -146,8 +155,8 @@ NativeFile read_native(std::istream& in, const std::string& name) {
       }
       ++kind;
     }
-    n0 = h.at("vertices").get<std::uint64_t>();
-    nb0 = h.at("boundary_vertices").get<std::uint64_t>();
+    n0 = header_integer(h.at("vertices"), PackedKeyIndex::kAbsent, r, "vertices");
+    nb0 = header_integer(h.at("boundary_vertices"), PackedKeyIndex::kAbsent, r, "boundary_vertices");
     if (n0 != shapes[0][0][0] || (m >= 1 && nb0 != shapes[1][0][0]) || (m == 0 && nb0 != 0))
       r.fail("vertex counts do not match the vertex cells");
     expected += 8 * (n0 + nb0) * static_cast<std::uint64_t>(d);
@@ -158,7 +167,8 @@ NativeFile read_native(std::istream& in, const std::string& name) {
       out.info.message = i.value("message", "");
       out.info.matrix = i.value("matrix", std::vector<double>{});
       out.info.offset = i.value("offset", std::vector<double>{});
-      out.info.function_evaluations = i.value("function_evaluations", std::uint64_t{0});
+      if (i.contains("function_evaluations"))
+        out.info.function_evaluations = header_integer(i["function_evaluations"], ~std::uint64_t{0}, r, "function_evaluations");
     }
   } catch (const nlohmann::json::exception& e) {
     r.fail(std::string("bad header: ") + e.what());

@@ -2,8 +2,11 @@
 // would give a (k+1)-simplex 1 or 3 transverse facets and a non-manifold output.
 #include "coxmesh/oracle/transversality.h"
 
-// GCC 12 reports a false maybe-uninitialized inside Boost.Multiprecision's cpp_int.
+// GCC 12 reports a false maybe-uninitialized inside Boost.Multiprecision's cpp_int (clang has no
+// such warning, and rejects the name).
+#if !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 #include <array>
 #include <boost/multiprecision/cpp_int.hpp>
 #include <cmath>

@@ -24,6 +24,9 @@ TraceResult run_tracer(const Triangulation& triangulation, std::vector<Intersect
   std::optional<walk::ParallelWalk> parallel;  // with more than one oracle
   if (oracles.size() > 1) parallel.emplace(walk, oracles);
   for (const auto& seed : seeds) {
+    // Past the limit, no more seeds: each would add its simplices and a level of walk (thousands
+    // of automatic seeds took S far past the limit).
+    if (walk.stopped()) break;
     walk.add_seed(seed, !options.skip_unusable_seeds);
     parallel ? parallel->walk() : walk.walk();
   }

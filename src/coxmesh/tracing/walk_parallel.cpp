@@ -137,7 +137,10 @@ Found ParallelWalk::classify_in_level(const Simplex& tau, std::uint32_t chunk, W
   // (a simplex of an older level, which only a degenerate oracle could show, would be tested again
   // and output: see walk)
   if (std::uint32_t id = find_near(worker, key, h); id != PackedKeyIndex::kAbsent) return {Kind::inside, id};
-  const auto [id, fresh] = worker.tested.insert(key, h);
+  // (no structured binding: clang 14 cannot capture one in a lambda)
+  const std::pair<std::uint32_t, bool> inserted = worker.tested.insert(key, h);
+  const std::uint32_t id = inserted.first;
+  const bool fresh = inserted.second;
   const auto output = [&](const double* found) {
     out.inside_keys.insert(out.inside_keys.end(), key, key + words);
     out.inside_hashes.push_back(h);

@@ -29,6 +29,8 @@ class SequentialWalk {
   void add_seed(std::span<const double> seed, bool must_succeed);
   // Walks from every simplex of S not walked yet, until S is closed (or the simplex limit).
   void walk();
+  // The simplex limit stopped the walk.
+  bool stopped() const { return result_.status == TraceStatus::max_simplices_reached; }
   // The result; oracle_calls counts this walk's calls, function_evaluations is left to the caller.
   TraceResult finish();
 

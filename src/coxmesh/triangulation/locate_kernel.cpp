@@ -224,9 +224,9 @@ Simplex locate_impl(const Triangulation& t, const double* padded_inverse, const 
 
 // d > 12: compiled for AVX2 and for the baseline, chosen once at load time (the matrix–vector
 // product is most of the work there); everything it calls is inlined into each version. Only on
-// x86, and not under ThreadSanitizer: the load-time chooser (an ifunc resolver) would run before
-// its runtime and crash.
-#if defined(__SANITIZE_THREAD__) || !(defined(__x86_64__) || defined(__i386__))
+// x86, not under ThreadSanitizer (the load-time chooser, an ifunc resolver, would run before its
+// runtime and crash) and not with clang (which refuses target_clones next to flatten).
+#if defined(__SANITIZE_THREAD__) || defined(__clang__) || !(defined(__x86_64__) || defined(__i386__))
 [[gnu::flatten]]
 #else
 [[gnu::target_clones("avx2", "default"), gnu::flatten]]
