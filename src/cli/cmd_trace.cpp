@@ -15,6 +15,7 @@
 #include "coxmesh/mesh/mesh_manifold.h"
 #include "coxmesh/oracle/expression_function.h"
 #include "coxmesh/oracle/presets.h"
+#include "coxmesh/tracing/local_pca_oracle.h"
 #include "points.h"
 #include "report.h"
 
@@ -230,11 +231,31 @@ void run(TraceCliOptions o) {
   mo.trace.threads = o.threads;
   // Expression functions are not thread-safe: every worker but the first gets its own.
   bool first = true;
-  const MeshReport report = mesh_manifold(t, [&]() -> ManifoldFunctions {
-    if (first) return first = false, ManifoldFunctions{f, domain};
-    auto [fw, dw] = make_problem();
-    return {fw, dw};
-  }, mo);
+  // --oracle local-pca: the per-simplex oracle, traced apart (one thread), with its defect count.
+  std::optional<std::size_t> defects;
+  MeshReport report;
+  if (cloud && o.points.oracle == "local-pca") {
+    if (!o.domains.empty() || o.domain_ball || !o.cut.empty() || !o.box.empty())
+      throw InputError("--oracle local-pca takes no --domain, --domain-ball, --cut or --box (only the tube)");
+    LocalPcaResult lp = mesh_local_pca(t, cloud->problem, mo.trace);
+    defects = lp.defects;
+    report.cells = std::move(lp.cells);
+    report.topology = std::move(lp.topology);
+    report.status = lp.status;
+    report.message = lp.message;
+    report.function_evaluations = lp.function_evaluations;
+    report.oracle_calls = lp.oracle_calls;
+    report.seeds = cloud->problem.seeds.size();
+    report.trace_seconds = lp.trace_seconds;
+    report.cell_complex_seconds = lp.cell_complex_seconds;
+    report.topology_seconds = lp.topology_seconds;
+  } else {
+    report = mesh_manifold(t, [&]() -> ManifoldFunctions {
+      if (first) return first = false, ManifoldFunctions{f, domain};
+      auto [fw, dw] = make_problem();
+      return {fw, dw};
+    }, mo);
+  }
   const CellComplex& cc = report.cells;
   const TopologyReport& topo = report.topology;
   const std::size_t automatic = cloud ? cloud->problem.seeds.size() : report.automatic_seeds;
@@ -267,7 +288,11 @@ void run(TraceCliOptions o) {
   std::ostream& out = output == "-" ? std::cerr : std::cout;
   if (o.json) {
     nlohmann::json j = topology_json(cc, topo);
-    if (cloud) j["point_cloud"] = point_cloud_json(*cloud);
+    if (cloud) {
+      j["point_cloud"] = point_cloud_json(*cloud);
+      j["point_cloud"]["oracle"] = o.points.oracle;
+      if (defects) j["point_cloud"]["local_pca_defects"] = *defects;
+    }
     else if (from_text) j["function"] = o.function;
     else j["preset"] = o.preset;
     j["function_evaluations"] = report.function_evaluations;
@@ -290,6 +315,9 @@ void run(TraceCliOptions o) {
   } else if (!o.quiet) {
     out << name << ": " << cc.manifold_dimension << "-manifold in R^" << d << "\n";
     if (cloud) print_point_cloud(out, *cloud);
+    if (defects)
+      out << "  local-pca defects  " << *defects
+          << " cofacets of traced simplices see an odd number of intersected facets (0: a manifold)\n";
     print_topology(out, cc, topo);
     if (automatic) out << "  seeds              " << automatic << (cloud ? " samples" : " found automatically in the box") << "\n";
     out << "  F evaluations      " << report.function_evaluations << " (" << report.oracle_calls << " oracle calls)\n"

@@ -16,6 +16,10 @@ void PointCloudCliOptions::add_to(CLI::App& cmd) {
          "--pc-function", function,
          "point clouds: blended (smooth, tolerates noise; default) or nearest (the frame of the nearest sample)")
       ->check(CLI::IsMember({"blended", "nearest"}));
+  cmd.add_option("--oracle", oracle,
+                 "point clouds: vertex (a function per lattice vertex: a manifold always; default) or local-pca (the "
+                 "thesis prototype's per-simplex PCA, for comparison: reports its defects; one thread)")
+      ->check(CLI::IsMember({"vertex", "local-pca"}));
   cmd.add_option("--neighbourhood", neighbourhood,
                  "point clouds: radius of the neighbourhoods whose PCA gives the normals (default 5 sample spacings)");
   cmd.add_option("--tube", tube,

@@ -17,6 +17,7 @@ namespace coxmesh::cli {
 struct PointCloudCliOptions {
   std::string file;
   std::string function = "blended";
+  std::string oracle = "vertex";  // vertex (a function per lattice vertex) or local-pca (per simplex)
   std::optional<double> neighbourhood, tube, blend_width;
   bool use_normals = false;
   CLI::Option* option = nullptr;  // --points itself (for excludes)

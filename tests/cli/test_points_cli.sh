@@ -26,6 +26,13 @@ check "points outliers" "1 1" "$(grep -c 'Betti numbers (Z/2) 1 0 1' <<<"$out") 
 json=$("$bin" trace --points sphere.xyz --pc-function nearest --tube 4 --edge-length 0.08 --json | tr -d ' \n')
 check "points nearest" "1" "$(grep -c '"betti":\[1,0,1\]' <<<"$json")"
 check "points edge length given" "1" "$(grep -c '"edge_length":0.08' <<<"$json")"
+# The per-simplex local-PCA oracle: its defects in the JSON and in the text; the default has none to report.
+json=$("$bin" trace --points sphere.xyz --oracle local-pca --json | tr -d ' \n')
+check "points local-pca json" "1 1" "$(grep -c '"oracle":"local-pca"' <<<"$json") $(grep -c '"local_pca_defects":[0-9]' <<<"$json")"
+check "points local-pca text" "1" "$("$bin" trace --points sphere.xyz --oracle local-pca --no-output | grep -c '^  local-pca defects  [0-9]')"
+json=$("$bin" trace --points sphere.xyz --json | tr -d ' \n')
+check "points default oracle" "1 0" "$(grep -c '"oracle":"vertex"' <<<"$json") $(grep -c 'local_pca_defects' <<<"$json")"
+fails_with "points local-pca domain" "takes no --domain" "$bin" trace --points sphere.xyz --oracle local-pca --cut 0,0,1,0 --no-output
 (cat sphere.xyz; head -5 sphere.xyz) > dup.xyz
 check "points duplicates" "1" "$("$bin" trace --points dup.xyz --no-output | grep -c '5 exact duplicates removed')"
 
