@@ -45,7 +45,8 @@ double ns_per_evaluation(const coxmesh::ImplicitFunction& f, int runs, long eval
       f.evaluate(xs.data() + (i % pool) * d, value.data());
       acc += value[0];
     }
-    times.push_back(std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / static_cast<double>(evaluations));
+    times.push_back(std::chrono::duration<double, std::nano>(Clock::now() - t0).count() /
+                    static_cast<double>(evaluations));
     sink = sink + acc;
   }
   return median(times);
@@ -89,7 +90,8 @@ int main(int argc, char** argv) {
   const std::vector<Eval> evals = {
       {"sphere S^2 in R^3", coxmesh::sphere(2, 3, 1.0), coxmesh::expression_function("x^2+y^2+z^2-1")},
       {"torus in R^3", coxmesh::torus(1.0, 0.4), coxmesh::expression_function("(sqrt(x^2+y^2)-1)^2+z^2-0.4^2")},
-      {"S^3 in R^5 (2 equations)", coxmesh::sphere(3, 5, 1.0), coxmesh::expression_function("x1^2+x2^2+x3^2+x4^2-1; x5")},
+      {"S^3 in R^5 (2 equations)", coxmesh::sphere(3, 5, 1.0),
+       coxmesh::expression_function("x1^2+x2^2+x3^2+x4^2-1; x5")},
   };
   std::printf("## Evaluation of F (ns per call, median of %d runs of 2,000,000 calls)\n\n", runs);
   std::printf("| function | compiled C++ | muparser expression | slowdown |\n|---|---:|---:|---:|\n");
@@ -102,14 +104,18 @@ int main(int argc, char** argv) {
 
   const double edges[] = {0.03, 0.03, 0.3};
   const std::vector<double> seeds[] = {{1, 0, 0}, {1.4, 0, 0}, {1, 0, 0, 0, 0}};  // on each manifold
-  std::printf("\n## Tracing (trace_manifold with oracle construction, seconds, median of %d interleaved runs)\n\n", runs);
-  std::printf("The predicted slowdown is 1 + (F evaluations x extra ns per evaluation) / preset time: F is\n"
-              "evaluated once per lattice vertex, so the expression only costs where F is called.\n\n");
-  std::printf("| case | edge | simplices | F evaluations | preset (compiled) | expression | measured slowdown | predicted |\n"
-              "|---|---:|---:|---:|---:|---:|---:|---:|\n");
+  std::printf("\n## Tracing (trace_manifold with oracle construction, seconds, median of %d interleaved runs)\n\n",
+              runs);
+  std::printf(
+      "The predicted slowdown is 1 + (F evaluations x extra ns per evaluation) / preset time: F is\n"
+      "evaluated once per lattice vertex, so the expression only costs where F is called.\n\n");
+  std::printf(
+      "| case | edge | simplices | F evaluations | preset (compiled) | expression | measured slowdown | predicted |\n"
+      "|---|---:|---:|---:|---:|---:|---:|---:|\n");
   for (std::size_t i = 0; i < evals.size(); ++i) {
     const auto [a, b] = trace_times(evals[i].compiled, evals[i].text, edges[i], seeds[i], runs);
-    if (a.simplices != b.simplices) std::printf("(!) different results: %zu vs %zu simplices\n", a.simplices, b.simplices);
+    if (a.simplices != b.simplices)
+      std::printf("(!) different results: %zu vs %zu simplices\n", a.simplices, b.simplices);
     const double predicted = 1 + static_cast<double>(a.evaluations) * extra_ns[i] * 1e-9 / a.seconds;
     std::printf("| %s | %.2f | %zu | %llu | %.4f | %.4f | %.3fx | %.3fx |\n", evals[i].name, edges[i], a.simplices,
                 static_cast<unsigned long long>(a.evaluations), a.seconds, b.seconds, b.seconds / a.seconds, predicted);

@@ -1,7 +1,8 @@
 // Multi-core scaling of tracing and cell complex construction. For every case: the
 // sequential walk (one oracle, the single-thread implementation) against the parallel one with
 // 1, 2, 4, … threads (one oracle per worker, sharing the vertex values), and the cell complex with
-// the same thread counts. Wall time, best and median of `runs` interleaved runs. Also checks that every run gives the same |S| and cell count.
+// the same thread counts. Wall time, best and median of `runs` interleaved runs. Also checks that every run gives the
+// same |S| and cell count.
 //
 // Usage: bench_parallel [max-threads = hardware threads] [runs = 3] [case-name-substring]
 // Threads beyond the number of cores only show the overhead; run it on a machine with more cores
@@ -49,9 +50,16 @@ std::vector<Case> make_cases() {
       {"S^3 in R^4", sphere(3, 4, 1.0), nullptr, Triangulation::coxeter(4).with_longest_edge(0.12).rotated(4), {}},
       {"S^2 in R^5", sphere(2, 5, 1.0), nullptr, Triangulation::coxeter(5).with_longest_edge(0.05).rotated(5), {}},
       {"S^3 in R^6", sphere(3, 6, 1.0), nullptr, Triangulation::coxeter(6).with_longest_edge(0.3).rotated(6), {}},
-      {"flat torus in R^4", product(circle, circle), nullptr, Triangulation::coxeter(4).with_longest_edge(0.05).rotated(7), {}},
-      {"flat torus in R^4, cut", product(circle, circle), half_space_domain({0.3, -0.2, 0.9, 0.25}, 0.2),
-       Triangulation::coxeter(4).with_longest_edge(0.05).rotated(8), {-1, 0, -1, 0}},
+      {"flat torus in R^4",
+       product(circle, circle),
+       nullptr,
+       Triangulation::coxeter(4).with_longest_edge(0.05).rotated(7),
+       {}},
+      {"flat torus in R^4, cut",
+       product(circle, circle),
+       half_space_domain({0.3, -0.2, 0.9, 0.25}, 0.2),
+       Triangulation::coxeter(4).with_longest_edge(0.05).rotated(8),
+       {-1, 0, -1, 0}},
   };
 }
 
@@ -155,11 +163,13 @@ int main(int argc, char** argv) {
   if (cores > 1 && cores <= 8)
     for (int k = 0; k < std::min(cores, max_threads); ++k) counts.push_back(1), cpus.push_back(k);
 
-  std::printf("%d hardware threads; wall time, best and median of %d interleaved runs; speedup = best 1-thread time / "
-              "best time (the sequential row: the single-thread overload, one oracle)\n\n",
-              cores, runs);
-  std::printf("| case | \\|S\\| | cells | threads | trace s (best / median) | trace speedup | trace CPU s | complex s "
-              "(best / median) | complex speedup | complex CPU s | F evaluations | oracle calls |\n");
+  std::printf(
+      "%d hardware threads; wall time, best and median of %d interleaved runs; speedup = best 1-thread time / "
+      "best time (the sequential row: the single-thread overload, one oracle)\n\n",
+      cores, runs);
+  std::printf(
+      "| case | \\|S\\| | cells | threads | trace s (best / median) | trace speedup | trace CPU s | complex s "
+      "(best / median) | complex speedup | complex CPU s | F evaluations | oracle calls |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Case& c : make_cases()) {
     if (c.name.find(filter) == std::string::npos) continue;
@@ -187,13 +197,13 @@ int main(int argc, char** argv) {
       const auto trace = column(timings[n], &Timing::trace), complex = column(timings[n], &Timing::complex);
       const Timing& last = timings[n].back();
       const std::string label = counts[n] == 0 ? "sequential"
-                                : cpus[n] >= 0  ? "1 on CPU " + std::to_string(cpus[n])
-                                                : std::to_string(counts[n]);
+                                : cpus[n] >= 0 ? "1 on CPU " + std::to_string(cpus[n])
+                                               : std::to_string(counts[n]);
       std::printf("| %s | %zu | %zu | %s | %.3f / %.3f | %.2f | %.3f | %.3f / %.3f | %.2f | %.3f | %llu | %llu |\n",
-                  c.name.c_str(), simplices, cells, label.c_str(),
-                  min_of(trace), median(trace), one_trace / min_of(trace), median(column(timings[n], &Timing::trace_cpu)),
-                  min_of(complex), median(complex), one_complex / min_of(complex),
-                  median(column(timings[n], &Timing::complex_cpu)), static_cast<unsigned long long>(last.evaluations),
+                  c.name.c_str(), simplices, cells, label.c_str(), min_of(trace), median(trace),
+                  one_trace / min_of(trace), median(column(timings[n], &Timing::trace_cpu)), min_of(complex),
+                  median(complex), one_complex / min_of(complex), median(column(timings[n], &Timing::complex_cpu)),
+                  static_cast<unsigned long long>(last.evaluations),
                   static_cast<unsigned long long>(last.oracle_calls));
       std::fflush(stdout);
     }

@@ -321,10 +321,11 @@ struct Case {
 template <class F, class Domain = std::nullptr_t>
 std::function<GudhiRun(const Eigen::MatrixXd&, const Eigen::VectorXd&, EvaluationLog*, MemoryProbe*)> gudhi_case(
     F f, std::vector<double> seed, int m, Domain domain = nullptr) {
-  return [f, seed, m, domain](const Eigen::MatrixXd& a, const Eigen::VectorXd& b, EvaluationLog* log, MemoryProbe* probe) {
-    if (log) return gudhi_run(a, b, Counting<F>{f, log}, domain, seed, m, probe);
-    return gudhi_run(a, b, f, domain, seed, m, probe);
-  };
+  return
+      [f, seed, m, domain](const Eigen::MatrixXd& a, const Eigen::VectorXd& b, EvaluationLog* log, MemoryProbe* probe) {
+        if (log) return gudhi_run(a, b, Counting<F>{f, log}, domain, seed, m, probe);
+        return gudhi_run(a, b, f, domain, seed, m, probe);
+      };
 }
 
 std::vector<Case> make_cases() {
@@ -334,8 +335,8 @@ std::vector<Case> make_cases() {
     seed[0] = 1.0;
     char name[32];
     std::snprintf(name, sizeof name, "S^%d in R^%d", m, d);
-    cases.push_back({name, d, m, scale, coxmesh::sphere(m, d, 1.0),
-                     nullptr, seed, gudhi_case(gct::Function_Sm_in_Rd(1.0, m, d), seed, m)});
+    cases.push_back({name, d, m, scale, coxmesh::sphere(m, d, 1.0), nullptr, seed,
+                     gudhi_case(gct::Function_Sm_in_Rd(1.0, m, d), seed, m)});
   };
   {
     std::vector<double> seed{1.0, 0.0};
@@ -367,8 +368,8 @@ std::vector<Case> make_cases() {
     const coxmesh::FunctionPtr f = coxmesh::moment_curve(d);
     const std::vector<double> seed = f->seed();
     const double radius = 1.5;
-    cases.push_back({"moment curve in R^6, ball", d, 1, 0.002, f, coxmesh::ball_domain(std::vector<double>(d, 0.0), radius),
-                     seed,
+    cases.push_back({"moment curve in R^6, ball", d, 1, 0.002, f,
+                     coxmesh::ball_domain(std::vector<double>(d, 0.0), radius), seed,
                      gudhi_case(gct::Function_moment_curve_in_Rd(1.0, d), seed, 1,
                                 gct::Function_Sm_in_Rd(radius, d - 1, Eigen::VectorXd::Zero(d)))});
   }
@@ -432,11 +433,13 @@ Result run_case(const Case& c, int runs, std::mt19937_64& rng) {
   std::vector<double> g[4], x[4];
   for (int i = 0; i < runs; ++i) {
     const GudhiRun gr = c.gudhi(a, b, nullptr, nullptr);
-    g[0].push_back(gr.trace_cpu), g[1].push_back(gr.trace_wall), g[2].push_back(gr.complex_cpu), g[3].push_back(gr.complex_wall);
+    g[0].push_back(gr.trace_cpu), g[1].push_back(gr.trace_wall), g[2].push_back(gr.complex_cpu),
+        g[3].push_back(gr.complex_wall);
     r.gudhi = gr;
     for (int j = 0; j < kCoxmeshRunsPerGudhiRun; ++j) {  // coxmesh is cheap: more runs, a steadier median
       const CoxRun cr = coxmesh_run(t, c.f, c.domain, c.seed);
-      x[0].push_back(cr.trace_cpu), x[1].push_back(cr.trace_wall), x[2].push_back(cr.complex_cpu), x[3].push_back(cr.complex_wall);
+      x[0].push_back(cr.trace_cpu), x[1].push_back(cr.trace_wall), x[2].push_back(cr.complex_cpu),
+          x[3].push_back(cr.complex_wall);
       r.cox = cr;
     }
   }
@@ -466,7 +469,8 @@ int profile(const std::string& filter, int reps) {
     const coxmesh::Triangulation t(a, b);
     for (int i = 0; i < reps; ++i) {
       const CoxRun r = coxmesh_run(t, c.f, c.domain, c.seed);
-      std::printf("%s: |S| %zu, trace %.4f s, complex %.4f s\n", c.name.c_str(), r.interior, r.trace_cpu, r.complex_cpu);
+      std::printf("%s: |S| %zu, trace %.4f s, complex %.4f s\n", c.name.c_str(), r.interior, r.trace_cpu,
+                  r.complex_cpu);
     }
     return 0;
   }
@@ -489,35 +493,45 @@ int main(int argc, char** argv) {
     results.push_back(run_case(c, runs, case_rng));
   }
 
-  std::printf("Single thread; thread CPU time, median of %d runs (GUDHI) and %d runs (coxmesh); wall times on stderr.\n\n",
-              runs, runs * kCoxmeshRunsPerGudhiRun);
-  std::printf("| case | scale | \\|S\\| (+\\|S_∂\\|) | cells | GUDHI trace s | coxmesh trace s | trace × | coxmesh simplices/s "
-              "| GUDHI complex s | coxmesh complex s | complex × |\n");
+  std::printf(
+      "Single thread; thread CPU time, median of %d runs (GUDHI) and %d runs (coxmesh); wall times on stderr.\n\n",
+      runs, runs * kCoxmeshRunsPerGudhiRun);
+  std::printf(
+      "| case | scale | \\|S\\| (+\\|S_∂\\|) | cells | GUDHI trace s | coxmesh trace s | trace × | coxmesh simplices/s "
+      "| GUDHI complex s | coxmesh complex s | complex × |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Result& r : results) {
     char sizes[64];
-    if (r.cox.boundary) std::snprintf(sizes, sizeof sizes, "%zu (+%zu)", r.cox.interior, r.cox.boundary);
-    else std::snprintf(sizes, sizeof sizes, "%zu", r.cox.interior);
-    const bool same = r.cox.interior == r.gudhi.interior && r.cox.boundary == r.gudhi.boundary && r.cox.cells == r.gudhi.cells;
-    std::printf("| %s | %g | %s%s | %zu | %.3f | %.4f | %.1f | %.3g | %.3f | %.4f | %.1f |\n", r.name.c_str(), r.scale, sizes,
-                same ? "" : " **≠ GUDHI**", r.cox.cells, r.gudhi.trace_cpu, r.cox.trace_cpu, r.gudhi.trace_cpu / r.cox.trace_cpu,
-                r.cox.interior / r.cox.trace_cpu, r.gudhi.complex_cpu, r.cox.complex_cpu, r.gudhi.complex_cpu / r.cox.complex_cpu);
+    if (r.cox.boundary)
+      std::snprintf(sizes, sizeof sizes, "%zu (+%zu)", r.cox.interior, r.cox.boundary);
+    else
+      std::snprintf(sizes, sizeof sizes, "%zu", r.cox.interior);
+    const bool same =
+        r.cox.interior == r.gudhi.interior && r.cox.boundary == r.gudhi.boundary && r.cox.cells == r.gudhi.cells;
+    std::printf("| %s | %g | %s%s | %zu | %.3f | %.4f | %.1f | %.3g | %.3f | %.4f | %.1f |\n", r.name.c_str(), r.scale,
+                sizes, same ? "" : " **≠ GUDHI**", r.cox.cells, r.gudhi.trace_cpu, r.cox.trace_cpu,
+                r.gudhi.trace_cpu / r.cox.trace_cpu, r.cox.interior / r.cox.trace_cpu, r.gudhi.complex_cpu,
+                r.cox.complex_cpu, r.gudhi.complex_cpu / r.cox.complex_cpu);
   }
-  std::printf("\nMemory, bytes per cell (cells of every dimension, interior and boundary). \"structure\" = "
-              "CellComplex::bytes(); \"peak, complex\" = peak RSS while the cell complex is built (the traced simplices "
-              "it starts from included) minus the RSS before tracing; \"peak, all\" = the same over tracing and "
-              "construction.\n\n");
-  std::printf("| case | cells | coxmesh structure | coxmesh peak, complex | coxmesh peak, all | GUDHI peak, complex "
-              "| GUDHI peak, all |\n");
+  std::printf(
+      "\nMemory, bytes per cell (cells of every dimension, interior and boundary). \"structure\" = "
+      "CellComplex::bytes(); \"peak, complex\" = peak RSS while the cell complex is built (the traced simplices "
+      "it starts from included) minus the RSS before tracing; \"peak, all\" = the same over tracing and "
+      "construction.\n\n");
+  std::printf(
+      "| case | cells | coxmesh structure | coxmesh peak, complex | coxmesh peak, all | GUDHI peak, complex "
+      "| GUDHI peak, all |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
   for (const Result& r : results) {
     const double n = static_cast<double>(r.cox.cells), g = static_cast<double>(r.gudhi.cells);
-    std::printf("| %s | %zu | %.0f | %.0f | %.0f | %.0f | %.0f |\n", r.name.c_str(), r.cox.cells, r.cox.complex_bytes / n,
-                r.cox_peak.complex / n, r.cox_peak.pipeline / n, r.gudhi_peak.complex / g, r.gudhi_peak.pipeline / g);
+    std::printf("| %s | %zu | %.0f | %.0f | %.0f | %.0f | %.0f |\n", r.name.c_str(), r.cox.cells,
+                r.cox.complex_bytes / n, r.cox_peak.complex / n, r.cox_peak.pipeline / n, r.gudhi_peak.complex / g,
+                r.gudhi_peak.pipeline / g);
   }
   std::printf("\nFunction evaluations (F only; the domain function is not counted):\n\n");
-  std::printf("| case | coxmesh F evaluations | distinct lattice vertices queried | equal | GUDHI F evaluations "
-              "| GUDHI distinct points | GUDHI evaluations per vertex |\n");
+  std::printf(
+      "| case | coxmesh F evaluations | distinct lattice vertices queried | equal | GUDHI F evaluations "
+      "| GUDHI distinct points | GUDHI evaluations per vertex |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
   for (const Result& r : results)
     std::printf("| %s | %llu | %llu | %s | %llu | %llu | %.1f |\n", r.name.c_str(),
@@ -526,10 +540,12 @@ int main(int argc, char** argv) {
                 static_cast<unsigned long long>(r.gudhi_evaluations), static_cast<unsigned long long>(r.gudhi_points),
                 static_cast<double>(r.gudhi_evaluations) / r.gudhi_points);
   for (const Result& r : results)
-    std::fprintf(stderr, "{\"case\": \"%s\", \"gudhi_trace_wall\": %s, \"coxmesh_trace_wall\": %s, \"gudhi_complex_wall\": %s, "
-                 "\"coxmesh_complex_wall\": %s, \"gudhi_simplices\": %zu, \"gudhi_boundary\": %zu, \"gudhi_cells\": %zu}\n",
-                 r.name.c_str(), fmt("%.4f", r.gudhi.trace_wall).c_str(), fmt("%.5f", r.cox.trace_wall).c_str(),
-                 fmt("%.4f", r.gudhi.complex_wall).c_str(), fmt("%.5f", r.cox.complex_wall).c_str(), r.gudhi.interior,
-                 r.gudhi.boundary, r.gudhi.cells);
+    std::fprintf(
+        stderr,
+        "{\"case\": \"%s\", \"gudhi_trace_wall\": %s, \"coxmesh_trace_wall\": %s, \"gudhi_complex_wall\": %s, "
+        "\"coxmesh_complex_wall\": %s, \"gudhi_simplices\": %zu, \"gudhi_boundary\": %zu, \"gudhi_cells\": %zu}\n",
+        r.name.c_str(), fmt("%.4f", r.gudhi.trace_wall).c_str(), fmt("%.5f", r.cox.trace_wall).c_str(),
+        fmt("%.4f", r.gudhi.complex_wall).c_str(), fmt("%.5f", r.cox.complex_wall).c_str(), r.gudhi.interior,
+        r.gudhi.boundary, r.gudhi.cells);
   return 0;
 }

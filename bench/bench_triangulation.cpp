@@ -19,10 +19,10 @@
 #include <string>
 #include <vector>
 
+#include "../tests/gudhi/gudhi_interop.h"
 #include "coxmesh/lattice/cofaces.h"
 #include "coxmesh/lattice/simplex.h"
 #include "coxmesh/triangulation/triangulation.h"
-#include "../tests/gudhi/gudhi_interop.h"
 
 namespace {
 
@@ -33,8 +33,8 @@ using gudhi_interop::random_simplex;
 using gudhi_interop::to_gudhi;
 
 constexpr std::uint64_t kSeed = 20240601;
-constexpr int kPoints = 1024;       // point pool, cycled through
-constexpr int kSimplices = 64;      // simplex pool; one benchmark iteration enumerates all of them
+constexpr int kPoints = 1024;   // point pool, cycled through
+constexpr int kSimplices = 64;  // simplex pool; one benchmark iteration enumerates all of them
 
 void add_size_counters(benchmark::State& state, int d) {
   state.counters["simplex_bytes"] = sizeof(Simplex);
@@ -137,9 +137,10 @@ int main(int argc, char** argv) {
   std::printf("sizeof(coxmesh::Simplex) = %zu bytes (fixed, no heap)\n", sizeof(Simplex));
   std::printf("packed key (coxmesh::pack, d + ceil((d+1)/4) words):");
   for (int d : {3, 5, 10, 20}) std::printf("  d=%d: %d B", d, coxmesh::packed_words(d) * 4);
-  std::printf("\nGUDHI simplex: sizeof = %zu bytes + heap: vertex vector (4d B) + partition vector "
-              "(24 B per part) + parts (8 B per index), k+3 allocations\n",
-              sizeof(GSimplex));
+  std::printf(
+      "\nGUDHI simplex: sizeof = %zu bytes + heap: vertex vector (4d B) + partition vector "
+      "(24 B per part) + parts (8 B per index), k+3 allocations\n",
+      sizeof(GSimplex));
 
   std::vector<std::unique_ptr<LocateCase>> locate_cases;
   std::vector<std::unique_ptr<CofacetCase>> cofacet_cases;

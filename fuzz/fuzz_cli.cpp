@@ -35,8 +35,8 @@ std::optional<std::string> option_value(const std::vector<std::string>& args, co
 
 // Options that name files or set the limits the harness fixes itself.
 bool forbidden(const std::string& a) {
-  for (const char* name : {"--points", "--matrix", "--output", "--project", "--plot", "--format", "--threads",
-                           "--max-simplices"})
+  for (const char* name :
+       {"--points", "--matrix", "--output", "--project", "--plot", "--format", "--threads", "--max-simplices"})
     if (starts_with(a, name)) return true;
   // Short options, alone or bundled ("-qo"): only -q is harmless; "-1,0" is a value.
   if (a.size() >= 2 && a[0] == '-' && a[1] != '-' && !(a[1] >= '0' && a[1] <= '9') && a[1] != '.')

@@ -19,8 +19,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const bool domain = (selector & 32) != 0;
   FunctionPtr f;
   try {
-    if (domain) f = expression_domain(text, dim == 0 ? 3 : dim);
-    else f = dim == 0 ? expression_function(text) : expression_function(text, dim);
+    if (domain)
+      f = expression_domain(text, dim == 0 ? 3 : dim);
+    else
+      f = dim == 0 ? expression_function(text) : expression_function(text, dim);
   } catch (const InputError&) {
     return 0;
   }

@@ -31,8 +31,8 @@ const std::string& scratch_file() {
   return path;
 }
 
-const std::vector<double> kPoints = {0, 0, 0, 0, 0, 0, 1, 0.5, -2, 3, 0.25, 1, -1, 2, 0.75, -0.5, 4, 1,
-                                     2, -3, 1, 0, 0.5, 2, 1, 1, 1, 1, 1, 1, -1, 0, 2, 0.125, -3, 5};  // 6 × 6
+const std::vector<double> kPoints = {0, 0,  0, 0, 0,   0, 1, 0.5, -2, 3, 0.25, 1, -1, 2, 0.75, -0.5,  4,  1,
+                                     2, -3, 1, 0, 0.5, 2, 1, 1,   1,  1, 1,    1, -1, 0, 2,    0.125, -3, 5};  // 6 × 6
 
 }  // namespace
 
@@ -44,7 +44,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (mode == 3) {  // the spec as text: indices, "pca", "" (never a path of this machine)
       // (a NUL would cut the name when the file is opened; no command-line argument holds one)
       std::error_code ec;
-      if (content.find('\0') != std::string::npos || (!content.empty() && std::filesystem::exists(content, ec))) return 0;
+      if (content.find('\0') != std::string::npos || (!content.empty() && std::filesystem::exists(content, ec)))
+        return 0;
       std::vector<double> points(kPoints.begin(), kPoints.begin() + 6 * d);
       const Projection p = make_projection(content, d, points);
       project_points(p, points);

@@ -70,7 +70,8 @@ py::dict summary(const Mesh& m) {
 py::tuple triangles(const Mesh& m, const std::string& project) {
   const CellComplex& cc = m.cells;
   if (cc.manifold_dimension != 2)
-    throw InputError("triangles() needs a surface (m = 2); this manifold has m = " + std::to_string(cc.manifold_dimension));
+    throw InputError("triangles() needs a surface (m = 2); this manifold has m = " +
+                     std::to_string(cc.manifold_dimension));
   const std::vector<double> coords = vertex_coordinates(cc);
   const Projection p = make_projection(project, cc.ambient_dimension, coords);
   const std::vector<double> points3 = p.changes_points ? project_points(p, coords) : coords;
@@ -107,94 +108,155 @@ The summary attributes carry the keys of `coxmesh trace --json`; summary() retur
     V, T = mesh.triangles()                    # for matplotlib's plot_trisurf
     mesh.write("torus.ply")
 )doc")
-      .def_property_readonly("ambient_dimension", [](const Mesh& x) { return x.cells.ambient_dimension; }, "d")
-      .def_property_readonly("manifold_dimension", [](const Mesh& x) { return x.cells.manifold_dimension; }, "m")
-      .def_property_readonly("traced_simplices", [](const Mesh& x) { return x.cells.interior.empty() ? 0u : x.cells.interior[0].size(); },
-                             "|S|: the k-simplices meeting the manifold (= interior vertices)")
-      .def_property_readonly("boundary_simplices", [](const Mesh& x) { return x.cells.boundary.empty() ? 0u : x.cells.boundary[0].size(); },
-                             "|S_boundary|: the (k+1)-simplices meeting its boundary (= boundary vertices)")
-      .def_property_readonly("cells", [](const Mesh& x) { return x.topology.cells; }, "interior cells per dimension 0..m")
-      .def_property_readonly("boundary_cells", [](const Mesh& x) { return x.topology.boundary_cells; }, "boundary cells per dimension 0..m-1")
-      .def_property_readonly("closed", [](const Mesh& x) { return x.topology.closed; },
-                             "every cell's boundary closes up; False when a limit stopped the trace (then no topology)")
-      .def_property_readonly("euler_characteristic", [](const Mesh& x) { return x.topology.closed ? py::cast(x.topology.euler_characteristic) : py::object(py::none()); },
-                             "of the whole complex (None when not closed)")
-      .def_property_readonly("betti", [](const Mesh& x) { return x.topology.closed ? py::cast(x.topology.betti) : py::object(py::none()); },
-                             "Z/2 Betti numbers 0..m (None when not closed)")
-      .def_property_readonly("components", [](const Mesh& x) { return x.topology.closed ? py::cast(x.topology.betti[0]) : py::object(py::none()); },
-                             "betti[0] (None when not closed)")
-      .def_property_readonly("is_manifold", [](const Mesh& x) { return x.topology.is_manifold; }, "the manifold check passed")
-      .def_property_readonly("manifold_problem", [](const Mesh& x) { return x.topology.is_manifold ? py::object(py::none()) : py::str(x.topology.manifold_problem); },
-                             "the first violation of the manifold check, or None")
-      .def_property_readonly("cell_complex_bytes", [](const Mesh& x) { return x.cells.bytes(); }, "memory held by the complex")
-      .def_property_readonly("function_evaluations", [](const Mesh& x) { return x.info.function_evaluations; },
-                             "evaluations of F by the tracer: one per lattice vertex it met")
-      .def_property_readonly("oracle_calls", [](const Mesh& x) { return x.oracle_calls; }, "k-simplices tested")
-      .def_property_readonly("seeds", [](const Mesh& x) { return x.seeds; }, "number of seeds used")
-      .def_property_readonly("automatic_seeds", [](const Mesh& x) { return x.automatic_seeds; }, "seeds found automatically in the box")
-      .def_property_readonly("complete", [](const Mesh& x) { return x.info.complete; }, "False when max_simplices or the box stopped the trace")
-      .def_property_readonly("message", [](const Mesh& x) { return x.info.message; }, "why the trace stopped early ('' when complete)")
-      .def_property_readonly("warnings", [](const Mesh& x) { return x.warnings; },
-                             "what the user should know to trust the result (e.g. 0 is not a regular value of F)")
-      .def_property_readonly("source", [](const Mesh& x) { return x.info.source; }, "how the manifold was given")
-      .def_property_readonly("timings", [](const Mesh& x) { return x.timings; }, "seconds per phase: trace, cell complex, topology")
+      .def_property_readonly(
+          "ambient_dimension", [](const Mesh& x) { return x.cells.ambient_dimension; }, "d")
+      .def_property_readonly(
+          "manifold_dimension", [](const Mesh& x) { return x.cells.manifold_dimension; }, "m")
+      .def_property_readonly(
+          "traced_simplices", [](const Mesh& x) { return x.cells.interior.empty() ? 0u : x.cells.interior[0].size(); },
+          "|S|: the k-simplices meeting the manifold (= interior vertices)")
+      .def_property_readonly(
+          "boundary_simplices",
+          [](const Mesh& x) { return x.cells.boundary.empty() ? 0u : x.cells.boundary[0].size(); },
+          "|S_boundary|: the (k+1)-simplices meeting its boundary (= boundary vertices)")
+      .def_property_readonly(
+          "cells", [](const Mesh& x) { return x.topology.cells; }, "interior cells per dimension 0..m")
+      .def_property_readonly(
+          "boundary_cells", [](const Mesh& x) { return x.topology.boundary_cells; },
+          "boundary cells per dimension 0..m-1")
+      .def_property_readonly(
+          "closed", [](const Mesh& x) { return x.topology.closed; },
+          "every cell's boundary closes up; False when a limit stopped the trace (then no topology)")
+      .def_property_readonly(
+          "euler_characteristic",
+          [](const Mesh& x) {
+            return x.topology.closed ? py::cast(x.topology.euler_characteristic) : py::object(py::none());
+          },
+          "of the whole complex (None when not closed)")
+      .def_property_readonly(
+          "betti",
+          [](const Mesh& x) { return x.topology.closed ? py::cast(x.topology.betti) : py::object(py::none()); },
+          "Z/2 Betti numbers 0..m (None when not closed)")
+      .def_property_readonly(
+          "components",
+          [](const Mesh& x) { return x.topology.closed ? py::cast(x.topology.betti[0]) : py::object(py::none()); },
+          "betti[0] (None when not closed)")
+      .def_property_readonly(
+          "is_manifold", [](const Mesh& x) { return x.topology.is_manifold; }, "the manifold check passed")
+      .def_property_readonly(
+          "manifold_problem",
+          [](const Mesh& x) {
+            return x.topology.is_manifold ? py::object(py::none()) : py::str(x.topology.manifold_problem);
+          },
+          "the first violation of the manifold check, or None")
+      .def_property_readonly(
+          "cell_complex_bytes", [](const Mesh& x) { return x.cells.bytes(); }, "memory held by the complex")
+      .def_property_readonly(
+          "function_evaluations", [](const Mesh& x) { return x.info.function_evaluations; },
+          "evaluations of F by the tracer: one per lattice vertex it met")
+      .def_property_readonly(
+          "oracle_calls", [](const Mesh& x) { return x.oracle_calls; }, "k-simplices tested")
+      .def_property_readonly(
+          "seeds", [](const Mesh& x) { return x.seeds; }, "number of seeds used")
+      .def_property_readonly(
+          "automatic_seeds", [](const Mesh& x) { return x.automatic_seeds; }, "seeds found automatically in the box")
+      .def_property_readonly(
+          "complete", [](const Mesh& x) { return x.info.complete; },
+          "False when max_simplices or the box stopped the trace")
+      .def_property_readonly(
+          "message", [](const Mesh& x) { return x.info.message; }, "why the trace stopped early ('' when complete)")
+      .def_property_readonly(
+          "warnings", [](const Mesh& x) { return x.warnings; },
+          "what the user should know to trust the result (e.g. 0 is not a regular value of F)")
+      .def_property_readonly(
+          "source", [](const Mesh& x) { return x.info.source; }, "how the manifold was given")
+      .def_property_readonly(
+          "timings", [](const Mesh& x) { return x.timings; }, "seconds per phase: trace, cell complex, topology")
       .def("summary", &summary, "The summary as a dict, with the keys of `coxmesh trace --json`.")
-      .def_property_readonly("points", [](py::object self) {
-             const Mesh& x = self.cast<const Mesh&>();
-             const py::ssize_t d = x.cells.ambient_dimension;
-             return view<double>(x.cells.vertices.data(), {static_cast<py::ssize_t>(x.cells.vertices.size()) / std::max<py::ssize_t>(d, 1), d}, self);
-           }, "The intersection points (interior vertices), an (n, d) read-only array sharing the mesh's memory.")
-      .def_property_readonly("boundary_points", [](py::object self) {
-             const Mesh& x = self.cast<const Mesh&>();
-             const py::ssize_t d = x.cells.ambient_dimension;
-             return view<double>(x.cells.boundary_vertices.data(), {static_cast<py::ssize_t>(x.cells.boundary_vertices.size()) / std::max<py::ssize_t>(d, 1), d}, self);
-           }, "The points on the boundary (boundary vertices), an (n, d) read-only array.")
-      .def("facets", [](py::object self, int j, bool boundary) {
-             const Mesh& x = self.cast<const Mesh&>();
-             const CellLevel& l = level(x, j, boundary);
-             return py::make_tuple(view<std::uint32_t>(l.facet_offsets.data(), {static_cast<py::ssize_t>(l.facet_offsets.size())}, self),
-                                   view<std::uint32_t>(l.facet_ids.data(), {static_cast<py::ssize_t>(l.facet_ids.size())}, self));
-           }, py::arg("j"), py::arg("boundary") = false, R"doc(
+      .def_property_readonly(
+          "points",
+          [](py::object self) {
+            const Mesh& x = self.cast<const Mesh&>();
+            const py::ssize_t d = x.cells.ambient_dimension;
+            return view<double>(x.cells.vertices.data(),
+                                {static_cast<py::ssize_t>(x.cells.vertices.size()) / std::max<py::ssize_t>(d, 1), d},
+                                self);
+          },
+          "The intersection points (interior vertices), an (n, d) read-only array sharing the mesh's memory.")
+      .def_property_readonly(
+          "boundary_points",
+          [](py::object self) {
+            const Mesh& x = self.cast<const Mesh&>();
+            const py::ssize_t d = x.cells.ambient_dimension;
+            return view<double>(
+                x.cells.boundary_vertices.data(),
+                {static_cast<py::ssize_t>(x.cells.boundary_vertices.size()) / std::max<py::ssize_t>(d, 1), d}, self);
+          },
+          "The points on the boundary (boundary vertices), an (n, d) read-only array.")
+      .def(
+          "facets",
+          [](py::object self, int j, bool boundary) {
+            const Mesh& x = self.cast<const Mesh&>();
+            const CellLevel& l = level(x, j, boundary);
+            return py::make_tuple(
+                view<std::uint32_t>(l.facet_offsets.data(), {static_cast<py::ssize_t>(l.facet_offsets.size())}, self),
+                view<std::uint32_t>(l.facet_ids.data(), {static_cast<py::ssize_t>(l.facet_ids.size())}, self));
+          },
+          py::arg("j"), py::arg("boundary") = false, R"doc(
 The facets of the cells of dimension j >= 1 in CSR form: (offsets, ids), read-only uint32 arrays;
 the facets of cell c are ids[offsets[c]:offsets[c+1]], cells of dimension j - 1 of the same kind.
 (An interior cell cut by the domain's boundary also has a boundary facet: boundary_facet(j).)
 Dimension 0 has no facets: both arrays are empty.)doc")
-      .def("boundary_facet", [](py::object self, int j) {
-             const Mesh& x = self.cast<const Mesh&>();
-             const CellLevel& l = level(x, j, false);
-             return view<std::uint32_t>(l.boundary_facet.data(), {static_cast<py::ssize_t>(l.boundary_facet.size())}, self);
-           }, py::arg("j"),
-           "For each interior cell of dimension j >= 1: the boundary cell of dimension j - 1 closing it where the domain "
-           "cuts it, or 0xFFFFFFFF; an empty array without a domain.")
-      .def("simplex", [](const Mesh& x, int j, std::uint32_t c, bool boundary) {
-             const CellLevel& l = level(x, j, boundary);
-             if (c >= l.size()) throw InputError("no cell " + std::to_string(c) + " of dimension " + std::to_string(j));
-             return l.simplices.simplex(c, x.cells.ambient_dimension);
-           }, py::arg("j"), py::arg("cell"), py::arg("boundary") = false,
-           "The ambient simplex of a cell (the cell is the simplex's intersection with the manifold).")
-      .def("triangles", [](const Mesh& x, const py::object& project) {
-             return triangles(x, project.is_none() ? std::string() : project.cast<std::string>());
-           }, py::arg("project") = py::none(), R"doc(
+      .def(
+          "boundary_facet",
+          [](py::object self, int j) {
+            const Mesh& x = self.cast<const Mesh&>();
+            const CellLevel& l = level(x, j, false);
+            return view<std::uint32_t>(l.boundary_facet.data(), {static_cast<py::ssize_t>(l.boundary_facet.size())},
+                                       self);
+          },
+          py::arg("j"),
+          "For each interior cell of dimension j >= 1: the boundary cell of dimension j - 1 closing it where the "
+          "domain "
+          "cuts it, or 0xFFFFFFFF; an empty array without a domain.")
+      .def(
+          "simplex",
+          [](const Mesh& x, int j, std::uint32_t c, bool boundary) {
+            const CellLevel& l = level(x, j, boundary);
+            if (c >= l.size()) throw InputError("no cell " + std::to_string(c) + " of dimension " + std::to_string(j));
+            return l.simplices.simplex(c, x.cells.ambient_dimension);
+          },
+          py::arg("j"), py::arg("cell"), py::arg("boundary") = false,
+          "The ambient simplex of a cell (the cell is the simplex's intersection with the manifold).")
+      .def(
+          "triangles",
+          [](const Mesh& x, const py::object& project) {
+            return triangles(x, project.is_none() ? std::string() : project.cast<std::string>());
+          },
+          py::arg("project") = py::none(), R"doc(
 A surface (m = 2) as triangles, for matplotlib:  V, T = mesh.triangles();
 ax.plot_trisurf(V[:, 0], V[:, 1], V[:, 2], triangles=T). V: (n, 3) points (interior then boundary
 vertices); T: (t, 3) int32 vertex ids, each polygon fanned from its first vertex, consistently
 oriented (outwards for closed surfaces). For d != 3 the points are projected: project is "i,j,k"
 (coordinates, 1-based), "pca", or a file with 3 rows of d numbers, as for write().)doc")
-      .def("write", [](const Mesh& x, const std::string& path, const py::object& format, const py::object& project) {
-             const MeshFormat f = format.is_none() ? format_of_path(path) : parse_format(format.cast<std::string>());
-             WriteOptions options;
-             options.projection = project.is_none() ? std::string() : project.cast<std::string>();
-             options.native = x.info;
-             WrittenCounts written;
-             {
-               py::gil_scoped_release release;
-               written = write_mesh(path, f, x.cells, options);
-             }
-             py::dict out;
-             out["path"] = path, out["format"] = format_name(f), out["points"] = written.points;
-             out["cells"] = written.cells, out["skipped_cells"] = written.skipped;
-             return out;
-           }, py::arg("path"), py::arg("format") = py::none(), py::arg("project") = py::none(), R"doc(
+      .def(
+          "write",
+          [](const Mesh& x, const std::string& path, const py::object& format, const py::object& project) {
+            const MeshFormat f = format.is_none() ? format_of_path(path) : parse_format(format.cast<std::string>());
+            WriteOptions options;
+            options.projection = project.is_none() ? std::string() : project.cast<std::string>();
+            options.native = x.info;
+            WrittenCounts written;
+            {
+              py::gil_scoped_release release;
+              written = write_mesh(path, f, x.cells, options);
+            }
+            py::dict out;
+            out["path"] = path, out["format"] = format_name(f), out["points"] = written.points;
+            out["cells"] = written.cells, out["skipped_cells"] = written.skipped;
+            return out;
+          },
+          py::arg("path"), py::arg("format") = py::none(), py::arg("project") = py::none(), R"doc(
 Writes the mesh, atomically, in the format of the extension (.vtu .off .ply .obj .mesh .cxm) or of
 `format` (vtu, off, noff, ply, obj, mesh, cxm). .cxm keeps every cell in R^d (coxmesh.read() loads
 it back exactly); the others hold 3D points: for d != 3 give project ("i,j,k", "pca" or a file of
@@ -202,7 +264,8 @@ it back exactly); the others hold 3D points: for d != 3 give project ("i,j,k", "
 Raises InputError when the format cannot hold the mesh or the path is not writable.)doc")
       .def("__repr__", [](const Mesh& x) {
         std::ostringstream os;
-        os << "<coxmesh.Mesh: " << x.cells.manifold_dimension << "-manifold in R^" << x.cells.ambient_dimension << ", cells [";
+        os << "<coxmesh.Mesh: " << x.cells.manifold_dimension << "-manifold in R^" << x.cells.ambient_dimension
+           << ", cells [";
         for (std::size_t i = 0; i < x.topology.cells.size(); ++i) os << (i ? ", " : "") << x.topology.cells[i];
         os << "], betti [";
         for (std::size_t i = 0; i < x.topology.betti.size(); ++i) os << (i ? ", " : "") << x.topology.betti[i];
@@ -210,18 +273,22 @@ Raises InputError when the format cannot hold the mesh or the path is not writab
         return os.str();
       });
 
-  m.def("read", [](const std::string& path) {
-    auto mesh = std::make_unique<Mesh>();
-    {
-      py::gil_scoped_release release;
-      NativeFile file = read_native(path);
-      mesh->cells = std::move(file.cells);
-      mesh->info = std::move(file.info);
-      mesh->topology = analyze_topology(mesh->cells);
-    }
-    return mesh;
-  }, py::arg("path"), "Reads a .cxm file written by Mesh.write() or `coxmesh trace -o FILE.cxm` into a Mesh (exactly: "
-                      "every cell keeps its id). Raises InputError naming the file for anything wrong.");
+  m.def(
+      "read",
+      [](const std::string& path) {
+        auto mesh = std::make_unique<Mesh>();
+        {
+          py::gil_scoped_release release;
+          NativeFile file = read_native(path);
+          mesh->cells = std::move(file.cells);
+          mesh->info = std::move(file.info);
+          mesh->topology = analyze_topology(mesh->cells);
+        }
+        return mesh;
+      },
+      py::arg("path"),
+      "Reads a .cxm file written by Mesh.write() or `coxmesh trace -o FILE.cxm` into a Mesh (exactly: "
+      "every cell keeps its id). Raises InputError naming the file for anything wrong.");
 }
 
 }  // namespace coxmesh::python

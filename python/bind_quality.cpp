@@ -61,9 +61,11 @@ py::list quality(const py::object& types, const py::object& dim, int max_dim, in
     py::dict row;
     row["type"] = family_name(r.family);
     row["dimension"] = r.dimension;
-    for (const auto& [key, value] : r.numbers) row[py::str(key)] = value ? py::object(py::float_(*value)) : py::object(py::none());
+    for (const auto& [key, value] : r.numbers)
+      row[py::str(key)] = value ? py::object(py::float_(*value)) : py::object(py::none());
     row["delaunay"] = r.delaunay;
-    row["delaunay_direct"] = r.delaunay_direct.empty() ? py::object(py::none()) : py::object(py::str(r.delaunay_direct));
+    row["delaunay_direct"] =
+        r.delaunay_direct.empty() ? py::object(py::none()) : py::object(py::str(r.delaunay_direct));
     out.append(row);
   }
   return out;

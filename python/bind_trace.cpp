@@ -8,8 +8,8 @@
 #include <optional>
 
 #include "bindings.h"
-#include "coxmesh/oracle/expression_function.h"
 #include "coxmesh/mesh/mesh_manifold.h"
+#include "coxmesh/oracle/expression_function.h"
 #include "coxmesh/oracle/presets.h"
 #include "mesh.h"
 #include "python_function.h"
@@ -68,8 +68,10 @@ std::unique_ptr<Mesh> trace(const TraceArguments& a) {
   std::function<FunctionPtr()> make_f;
   std::optional<Preset> preset;
   if (from_function) {
-    for (const auto& [name, value] : {std::pair{"m", &a.m}, {"radius", &a.radius}, {"minor_radius", &a.minor_radius}, {"center", &a.center}})
-      if (!value->is_none()) throw InputError(std::string(name) + " is a preset parameter; it does not apply to a function");
+    for (const auto& [name, value] :
+         {std::pair{"m", &a.m}, {"radius", &a.radius}, {"minor_radius", &a.minor_radius}, {"center", &a.center}})
+      if (!value->is_none())
+        throw InputError(std::string(name) + " is a preset parameter; it does not apply to a function");
     if (py::isinstance<py::str>(a.function)) {
       const std::string text = a.function.cast<std::string>();
       const std::optional<int> dim = optional_arg<int>(a.dim);
@@ -105,8 +107,10 @@ std::unique_ptr<Mesh> trace(const TraceArguments& a) {
   // Domains: the preset's, then each given one (an expression or a callable), intersected.
   py::list domains;
   if (!a.domain.is_none()) {
-    if (py::isinstance<py::str>(a.domain) || PyCallable_Check(a.domain.ptr())) domains.append(a.domain);
-    else domains = py::list(a.domain);
+    if (py::isinstance<py::str>(a.domain) || PyCallable_Check(a.domain.ptr()))
+      domains.append(a.domain);
+    else
+      domains = py::list(a.domain);
   }
   std::vector<std::string> domain_texts;
   std::vector<FunctionPtr> domain_callables;
@@ -169,14 +173,18 @@ std::unique_ptr<Mesh> trace(const TraceArguments& a) {
   } else {
     const std::string kind = a.triangulation.cast<std::string>();
     if (kind != "coxeter" && kind != "freudenthal")
-      throw InputError("triangulation must be \"coxeter\", \"freudenthal\" or a coxmesh.Triangulation, got \"" + kind + "\"");
+      throw InputError("triangulation must be \"coxeter\", \"freudenthal\" or a coxmesh.Triangulation, got \"" + kind +
+                       "\"");
     t = kind == "coxeter" ? Triangulation::coxeter(d) : Triangulation::freudenthal(d);
   }
   if (t->dimension() != d)
-    throw InputError("the triangulation is of R^" + std::to_string(t->dimension()) + " but the manifold is in R^" + std::to_string(d));
+    throw InputError("the triangulation is of R^" + std::to_string(t->dimension()) + " but the manifold is in R^" +
+                     std::to_string(d));
   if (!a.scale.is_none()) t = t->scaled(a.scale.cast<double>());
-  if (!a.edge_length.is_none()) t = t->with_longest_edge(a.edge_length.cast<double>());
-  else if (a.scale.is_none() && !sized) t = t->with_longest_edge(default_edge);
+  if (!a.edge_length.is_none())
+    t = t->with_longest_edge(a.edge_length.cast<double>());
+  else if (a.scale.is_none() && !sized)
+    t = t->with_longest_edge(default_edge);
   if (!a.offset.is_none()) {
     const std::vector<double> b = point(a.offset, d, "offset");
     t = t->with_offset(Eigen::Map<const Eigen::VectorXd>(b.data(), d));
@@ -190,7 +198,8 @@ std::unique_ptr<Mesh> trace(const TraceArguments& a) {
   // to report progress. Python callables check signals at every batch too.
   const bool show = py::isinstance<py::bool_>(a.progress) && a.progress.cast<bool>();
   const bool report = !show && !a.progress.is_none() && !py::isinstance<py::bool_>(a.progress);
-  if (report && !PyCallable_Check(a.progress.ptr())) throw InputError("progress must be True, False or a callable f(traced_simplices)");
+  if (report && !PyCallable_Check(a.progress.ptr()))
+    throw InputError("progress must be True, False or a callable f(traced_simplices)");
   const Clock::time_point start = Clock::now();
   Clock::time_point last = start, last_shown = start;
   mo.trace.progress_interval = 2048;
@@ -210,10 +219,13 @@ std::unique_ptr<Mesh> trace(const TraceArguments& a) {
   {
     py::gil_scoped_release release;
     bool first = true;  // expressions are not thread-safe: every worker but the first gets its own
-    MeshReport r = mesh_manifold(*t, [&]() -> ManifoldFunctions {
-      if (first) return first = false, ManifoldFunctions{f, make_domain()};
-      return {make_f(), make_domain()};
-    }, mo);
+    MeshReport r = mesh_manifold(
+        *t,
+        [&]() -> ManifoldFunctions {
+          if (first) return first = false, ManifoldFunctions{f, make_domain()};
+          return {make_f(), make_domain()};
+        },
+        mo);
     mesh->cells = std::move(r.cells);
     mesh->topology = std::move(r.topology);
     mesh->seeds = r.seeds;
@@ -236,20 +248,23 @@ std::unique_ptr<Mesh> trace(const TraceArguments& a) {
 }  // namespace
 
 void bind_trace(py::module_& m) {
-  m.def("trace", [](py::object function, py::object preset, py::object m_, py::object dim, py::object radius,
-                    py::object minor_radius, py::object center, py::object domain, py::object seeds, bool auto_seed,
-                    py::object box, py::object edge_length, py::object scale, py::object matrix, py::object offset,
-                    py::object triangulation, int threads, std::size_t max_simplices, py::object progress) {
-          return trace(TraceArguments{function, preset, m_, dim, radius, minor_radius, center, domain, seeds, box, edge_length,
-                                      scale, matrix, offset, triangulation, progress, auto_seed, threads, max_simplices});
-        },
-        py::kw_only(), py::arg("function") = py::none(), py::arg("preset") = py::none(), py::arg("m") = py::none(),
-        py::arg("dim") = py::none(), py::arg("radius") = py::none(), py::arg("minor_radius") = py::none(),
-        py::arg("center") = py::none(), py::arg("domain") = py::none(), py::arg("seeds") = py::none(),
-        py::arg("auto_seed") = false, py::arg("box") = py::none(), py::arg("edge_length") = py::none(),
-        py::arg("scale") = py::none(), py::arg("matrix") = py::none(), py::arg("offset") = py::none(),
-        py::arg("triangulation") = "coxeter", py::arg("threads") = 0, py::arg("max_simplices") = 20'000'000,
-        py::arg("progress") = false, R"doc(
+  m.def(
+      "trace",
+      [](py::object function, py::object preset, py::object m_, py::object dim, py::object radius,
+         py::object minor_radius, py::object center, py::object domain, py::object seeds, bool auto_seed,
+         py::object box, py::object edge_length, py::object scale, py::object matrix, py::object offset,
+         py::object triangulation, int threads, std::size_t max_simplices, py::object progress) {
+        return trace(TraceArguments{function, preset, m_, dim, radius, minor_radius, center, domain, seeds, box,
+                                    edge_length, scale, matrix, offset, triangulation, progress, auto_seed, threads,
+                                    max_simplices});
+      },
+      py::kw_only(), py::arg("function") = py::none(), py::arg("preset") = py::none(), py::arg("m") = py::none(),
+      py::arg("dim") = py::none(), py::arg("radius") = py::none(), py::arg("minor_radius") = py::none(),
+      py::arg("center") = py::none(), py::arg("domain") = py::none(), py::arg("seeds") = py::none(),
+      py::arg("auto_seed") = false, py::arg("box") = py::none(), py::arg("edge_length") = py::none(),
+      py::arg("scale") = py::none(), py::arg("matrix") = py::none(), py::arg("offset") = py::none(),
+      py::arg("triangulation") = "coxeter", py::arg("threads") = 0, py::arg("max_simplices") = 20'000'000,
+      py::arg("progress") = false, R"doc(
 Meshes a manifold: traces it through the ambient triangulation (thesis Ch. 4), builds its cell
 complex and its topology report. Keyword arguments only; the names follow `coxmesh trace`'s options.
 

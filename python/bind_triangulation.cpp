@@ -21,8 +21,9 @@ py::array_t<double, py::array::c_style> point_rows(const py::handle& points, int
     throw InputError(what + " has " + std::to_string(a.shape(0)) + " coordinates, expected " + std::to_string(d));
   if (a.ndim() == 1) a = a.reshape({py::ssize_t{1}, py::ssize_t{d}});
   if (a.ndim() != 2 || a.shape(1) != d)
-    throw InputError(what + " must have shape (n, " + std::to_string(d) + "), got " +
-                     std::string(py::str(py::tuple(py::cast(std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim()))))));
+    throw InputError(
+        what + " must have shape (n, " + std::to_string(d) + "), got " +
+        std::string(py::str(py::tuple(py::cast(std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim()))))));
   return a;
 }
 
@@ -114,18 +115,25 @@ are immutable values: comparable, hashable, printed in the text form of the comm
            py::arg("vertex"), py::arg("partition"),
            "Builds a simplex from its minimal vertex (d integers) and its blocks (lists of indices in 0..d, "
            "d in the last). Raises InputError (a ValueError) unless the blocks partition {0..d}.")
-      .def_static("parse", [](const std::string& text) { return parse_simplex(text); }, py::arg("text"),
-                  "Parses the text form \"(y_0,...,y_{d-1}) [{..},{..},...]\" (as printed by coxmesh locate).")
+      .def_static(
+          "parse", [](const std::string& text) { return parse_simplex(text); }, py::arg("text"),
+          "Parses the text form \"(y_0,...,y_{d-1}) [{..},{..},...]\" (as printed by coxmesh locate).")
       .def_property_readonly("dimension", &Simplex::dimension, "k: the number of blocks minus one")
       .def_property_readonly("ambient_dimension", &Simplex::ambient_dimension, "d")
-      .def_property_readonly("vertex", [](const Simplex& s) { return py::tuple(py::cast(std::vector<int>(s.y.begin(), s.y.begin() + s.d))); },
-                             "the minimal vertex y, a tuple of d integers")
+      .def_property_readonly(
+          "vertex",
+          [](const Simplex& s) { return py::tuple(py::cast(std::vector<int>(s.y.begin(), s.y.begin() + s.d))); },
+          "the minimal vertex y, a tuple of d integers")
       .def_property_readonly("partition", &Simplex::partition, "the blocks, each a sorted list of indices in 0..d")
-      .def("vertices", [](const Simplex& s) {
-             py::array_t<std::int32_t> out({s.k + 1, static_cast<int>(s.d)});
-             for (int j = 0; j <= s.k; ++j) s.vertex(j, out.mutable_data(j));
-             return out;
-           }, "The lattice coordinates of the k + 1 vertices, a (k + 1, d) int32 array (Cartesian: Triangulation.vertices).")
+      .def(
+          "vertices",
+          [](const Simplex& s) {
+            py::array_t<std::int32_t> out({s.k + 1, static_cast<int>(s.d)});
+            for (int j = 0; j <= s.k; ++j) s.vertex(j, out.mutable_data(j));
+            return out;
+          },
+          "The lattice coordinates of the k + 1 vertices, a (k + 1, d) int32 array (Cartesian: "
+          "Triangulation.vertices).")
       .def("faces", &faces_of, py::arg("k"), "The k-faces, in lexicographic order of their vertex indices.")
       .def("cofaces", &cofaces_of, py::arg("l"), "The l-cofaces (dimension <= l <= d), each once.")
       .def("__repr__", [](const Simplex& s) { return to_string(s); })
@@ -151,18 +159,25 @@ The ambient triangulation: the Freudenthal–Kuhn triangulation of R^d under x =
            "From a (d, d) matrix (the lattice point y sits at matrix @ y + offset) and an offset (d numbers, "
            "default 0). Raises InputError for a singular or ill-conditioned matrix.")
       .def_static("coxeter", &Triangulation::coxeter, py::arg("d"), "The Coxeter triangulation Ã_d with unit heights.")
-      .def_static("freudenthal", &Triangulation::freudenthal, py::arg("d"), "Freudenthal–Kuhn itself (matrix I, offset 0).")
+      .def_static("freudenthal", &Triangulation::freudenthal, py::arg("d"),
+                  "Freudenthal–Kuhn itself (matrix I, offset 0).")
       .def("scaled", &Triangulation::scaled, py::arg("s"), "The matrix multiplied by s > 0 (the offset kept).")
       .def("with_longest_edge", &Triangulation::with_longest_edge, py::arg("h"),
            "Scaled so that the longest edge of every d-simplex is h.")
-      .def("with_offset", [](const Triangulation& t, const py::handle& b) { return t.with_offset(to_vector(b, t.dimension(), "offset")); },
-           py::arg("offset"), "The same matrix with this offset (d numbers).")
+      .def(
+          "with_offset",
+          [](const Triangulation& t, const py::handle& b) {
+            return t.with_offset(to_vector(b, t.dimension(), "offset"));
+          },
+          py::arg("offset"), "The same matrix with this offset (d numbers).")
       .def("rotated", &Triangulation::rotated, py::arg("seed"),
            "Turned by a random orthogonal matrix drawn from the seed (deterministic).")
       .def_property_readonly("dimension", &Triangulation::dimension, "d")
-      .def_property_readonly("matrix", [](const Triangulation& t) { return matrix_array(t.matrix()); }, "the (d, d) matrix (a copy)")
-      .def_property_readonly("offset", [](const Triangulation& t) { return matrix_array(t.offset()).reshape({t.dimension()}); },
-                             "the offset, d numbers (a copy)")
+      .def_property_readonly(
+          "matrix", [](const Triangulation& t) { return matrix_array(t.matrix()); }, "the (d, d) matrix (a copy)")
+      .def_property_readonly(
+          "offset", [](const Triangulation& t) { return matrix_array(t.offset()).reshape({t.dimension()}); },
+          "the offset, d numbers (a copy)")
       .def("longest_edge", &Triangulation::longest_edge, "The length of the longest edge of the d-simplices.")
       .def("locate", &locate_points, py::arg("points"), R"doc(
 The minimal simplex containing each point (thesis §3.2). points: an (n, d) array (or one point of d
@@ -172,18 +187,29 @@ numbers). Returns three arrays (vertex, blocks, barycentric):
   barycentric  (n, d + 1) float64: the barycentric coordinates of the point in its simplex (columns
                beyond the dimension are 0).
 Runs in C++ without the GIL, with no Python work per point. Raises InputError for NaN/Inf.)doc")
-      .def("simplex_at", [](const Triangulation& t, const py::handle& x) { return t.locate(point_rows(x, t.dimension(), "the point").data()); },
-           py::arg("point"), "The minimal simplex containing one point, as a Simplex.")
-      .def("vertices", [](const Triangulation& t, const Simplex& s) {
-             if (s.d != t.dimension()) throw InputError("the simplex is in R^" + std::to_string(s.d) + ", the triangulation of R^" + std::to_string(t.dimension()));
-             py::array_t<double> out({s.k + 1, static_cast<int>(s.d)});
-             t.vertex_coordinates(s, out.mutable_data());
-             return out;
-           }, py::arg("simplex"), "The Cartesian coordinates of the simplex's k + 1 vertices, a (k + 1, d) array.")
-      .def("faces", [](const Triangulation&, const Simplex& s, int k) { return faces_of(s, k); }, py::arg("simplex"), py::arg("k"),
-           "The k-faces of a simplex (0 <= k <= its dimension).")
-      .def("cofaces", [](const Triangulation&, const Simplex& s, int l) { return cofaces_of(s, l); }, py::arg("simplex"), py::arg("l"),
-           "The l-cofaces of a simplex (its dimension <= l <= d).")
+      .def(
+          "simplex_at",
+          [](const Triangulation& t, const py::handle& x) {
+            return t.locate(point_rows(x, t.dimension(), "the point").data());
+          },
+          py::arg("point"), "The minimal simplex containing one point, as a Simplex.")
+      .def(
+          "vertices",
+          [](const Triangulation& t, const Simplex& s) {
+            if (s.d != t.dimension())
+              throw InputError("the simplex is in R^" + std::to_string(s.d) + ", the triangulation of R^" +
+                               std::to_string(t.dimension()));
+            py::array_t<double> out({s.k + 1, static_cast<int>(s.d)});
+            t.vertex_coordinates(s, out.mutable_data());
+            return out;
+          },
+          py::arg("simplex"), "The Cartesian coordinates of the simplex's k + 1 vertices, a (k + 1, d) array.")
+      .def(
+          "faces", [](const Triangulation&, const Simplex& s, int k) { return faces_of(s, k); }, py::arg("simplex"),
+          py::arg("k"), "The k-faces of a simplex (0 <= k <= its dimension).")
+      .def(
+          "cofaces", [](const Triangulation&, const Simplex& s, int l) { return cofaces_of(s, l); }, py::arg("simplex"),
+          py::arg("l"), "The l-cofaces of a simplex (its dimension <= l <= d).")
       .def("__repr__", [](const Triangulation& t) {
         std::ostringstream os;
         os << "Triangulation(d=" << t.dimension() << (t.is_freudenthal() ? ", freudenthal" : "") << ")";

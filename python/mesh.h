@@ -15,8 +15,8 @@ namespace coxmesh::python {
 struct Mesh {
   CellComplex cells;
   TopologyReport topology;
-  NativeInfo info;                      // source, complete, message, triangulation, evaluations
-  std::string preset, function;         // how the manifold was given (at most one is set)
+  NativeInfo info;               // source, complete, message, triangulation, evaluations
+  std::string preset, function;  // how the manifold was given (at most one is set)
   std::uint64_t oracle_calls = 0;
   std::size_t seeds = 0, automatic_seeds = 0;
   std::map<std::string, double> timings;  // trace_seconds, cell_complex_seconds, topology_seconds

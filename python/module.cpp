@@ -25,7 +25,8 @@ PYBIND11_MODULE(coxmesh, m) {
   static py::exception<coxmesh::EvaluationError> evaluation_error(m, "EvaluationError", PyExc_ValueError);
   input_error.doc() = "Invalid input: dimensions, NaN/Inf, malformed text, singular matrices, bad files.";
   seed_error.doc() = "A seed reaches nothing: no simplex near it meets the manifold, or it is outside the domain.";
-  evaluation_error.doc() = "The function (or the domain) is not finite at a lattice vertex; the message names the point.";
+  evaluation_error.doc() =
+      "The function (or the domain) is not finite at a lattice vertex; the message names the point.";
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);

@@ -19,7 +19,8 @@ Values call_on(const py::object& fn, const double* xs, int n, int d, const std::
   std::copy(xs, xs + static_cast<std::size_t>(n) * d, x.mutable_data());
   const py::object result = fn(x);
   Values y = Values::ensure(result);
-  if (!y) throw InputError(what + " must return an array of numbers, got " + std::string(py::str(py::type::of(result))));
+  if (!y)
+    throw InputError(what + " must return an array of numbers, got " + std::string(py::str(py::type::of(result))));
   if (y.ndim() == 0 || y.ndim() > 2 || y.shape(0) != n)
     throw InputError(what + " must return an array of shape (n, k) or (n,) for n points, got shape " +
                      std::string(py::str(py::getattr(y, "shape"))) + " for n = " + std::to_string(n));
@@ -53,8 +54,8 @@ void PythonFunction::evaluate_batch(const double* xs, int n, double* values) con
 void PythonFunction::call(const double* xs, int n, double* values) const {
   const Values y = call_on(fn_, xs, n, d_, what_);
   if ((y.ndim() == 1 && k_ != 1) || (y.ndim() == 2 && y.shape(1) != k_))
-    throw InputError(what_ + " returned " + std::string(py::str(py::getattr(y, "shape"))) + " for " + std::to_string(n) +
-                     " points; it returned " + std::to_string(k_) + " values per point before");
+    throw InputError(what_ + " returned " + std::string(py::str(py::getattr(y, "shape"))) + " for " +
+                     std::to_string(n) + " points; it returned " + std::to_string(k_) + " values per point before");
   std::copy(y.data(), y.data() + static_cast<std::size_t>(n) * k_, values);
 }
 

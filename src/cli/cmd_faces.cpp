@@ -31,8 +31,10 @@ void list(const FacesOptions& o, bool faces) {
   for (int k = lo; k <= hi; ++k) {
     Enumerator e(s, k);
     for (Simplex f; e.next(f);) {
-      if (o.json) std::cout << separator << simplex_json(f).dump(), separator = ",";
-      else std::cout << to_string(f) << "\n";
+      if (o.json)
+        std::cout << separator << simplex_json(f).dump(), separator = ",";
+      else
+        std::cout << to_string(f) << "\n";
     }
   }
   if (o.json) std::cout << (*separator == '[' ? "[]" : "]") << "\n";

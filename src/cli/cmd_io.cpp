@@ -32,7 +32,8 @@ void convert(const ConvertOptions& o) {
   wo.native = file.info;
   const WrittenCounts n = write_mesh(o.output, format, file.cells, wo);
   if (!o.quiet) {
-    std::cout << "wrote " << o.output << " (" << format_name(format) << ", " << n.points << " points, " << n.cells << " cells";
+    std::cout << "wrote " << o.output << " (" << format_name(format) << ", " << n.points << " points, " << n.cells
+              << " cells";
     if (n.skipped) std::cout << "; " << n.skipped << " open cells at the cut not written";
     std::cout << ")\n";
   }
@@ -71,19 +72,23 @@ void check(const CheckOptions& o) {
 
 void register_io(CLI::App& app, int& status) {
   auto c = std::make_shared<ConvertOptions>();
-  CLI::App* convert_cmd = app.add_subcommand("convert", "re-export a .cxm file (written by trace -o FILE.cxm) to any format");
+  CLI::App* convert_cmd =
+      app.add_subcommand("convert", "re-export a .cxm file (written by trace -o FILE.cxm) to any format");
   convert_cmd->add_option("input", c->input, "a .cxm file")->required();
   convert_cmd->add_option("output", c->output, "the file to write (.vtu .off .ply .obj .mesh .cxm)")->required();
-  convert_cmd->add_option("--format", c->format, "output format, overriding the extension: vtu, off, noff, ply, obj, mesh, cxm");
-  convert_cmd->add_option("--project", c->project,
-                          "3D formats with d != 3: coordinates i,j,k (1-based, default 1,2,3), pca, or a file of 3 rows "
-                          "of d numbers");
+  convert_cmd->add_option("--format", c->format,
+                          "output format, overriding the extension: vtu, off, noff, ply, obj, mesh, cxm");
+  convert_cmd->add_option(
+      "--project", c->project,
+      "3D formats with d != 3: coordinates i,j,k (1-based, default 1,2,3), pca, or a file of 3 rows "
+      "of d numbers");
   convert_cmd->add_flag("-q,--quiet", c->quiet, "print nothing but errors");
   convert_cmd->callback([c, &status] { status = run_guarded([&] { convert(*c); }); });
 
   auto k = std::make_shared<CheckOptions>();
-  CLI::App* check_cmd = app.add_subcommand("check", "re-check a .cxm file: cells, Euler characteristic, Betti numbers, "
-                                                    "manifold check");
+  CLI::App* check_cmd = app.add_subcommand("check",
+                                           "re-check a .cxm file: cells, Euler characteristic, Betti numbers, "
+                                           "manifold check");
   check_cmd->add_option("input", k->input, "a .cxm file")->required();
   check_cmd->add_flag("--json", k->json, "print the report as JSON (the keys of trace --json that apply)");
   check_cmd->callback([k, &status] { status = run_guarded([&] { check(*k); }); });

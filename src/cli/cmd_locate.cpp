@@ -47,7 +47,8 @@ void run(const LocateOptions& o) {
   std::ifstream file;
   if (o.points_file != "-") {
     std::error_code ec;
-    if (std::filesystem::is_directory(o.points_file, ec)) throw InputError("the points file '" + o.points_file + "' is a directory");
+    if (std::filesystem::is_directory(o.points_file, ec))
+      throw InputError("the points file '" + o.points_file + "' is a directory");
     file.open(o.points_file);
     if (!file) throw InputError("cannot open the points file '" + o.points_file + "'");
   }

@@ -112,9 +112,14 @@ std::vector<Column> table_columns(bool relative) {
             {"d·r/R", "radius_ratio_relative"},
             {"fatness rel", "fatness_relative"},
             {"h/R rel", "aspect_ratio_relative"}};
-  return {{"L", "longest_edge"},          {"l", "shortest_edge"},   {"L/l", "edge_ratio"},
-          {"h/L", "thickness"},           {"h/(dL)", "thickness_normalized"}, {"r/R", "radius_ratio"},
-          {"vol/L^d", "fatness"},         {"h/R", "aspect_ratio"}};
+  return {{"L", "longest_edge"},
+          {"l", "shortest_edge"},
+          {"L/l", "edge_ratio"},
+          {"h/L", "thickness"},
+          {"h/(dL)", "thickness_normalized"},
+          {"r/R", "radius_ratio"},
+          {"vol/L^d", "fatness"},
+          {"h/R", "aspect_ratio"}};
 }
 
 std::vector<std::vector<std::string>> table_cells(const std::vector<Row>& rows, bool relative,
@@ -284,7 +289,8 @@ std::string svg_plot(const std::vector<Row>& rows, const std::string& measure, b
     const double ly = top + 10 + 20 * legend++;
     s << "<line x1=\"" << left + pw + 20 << "\" y1=\"" << ly << "\" x2=\"" << left + pw + 45 << "\" y2=\"" << ly
       << "\" stroke=\"" << colours[static_cast<int>(f)] << "\" stroke-width=\"2\"/>\n<text x=\"" << left + pw + 52
-      << "\" y=\"" << ly + 4 << "\">" << quality::family_name(f) << "\u0303<tspan dy=\"4\" font-size=\"10\">d</tspan></text>\n";
+      << "\" y=\"" << ly + 4 << "\">" << quality::family_name(f)
+      << "\u0303<tspan dy=\"4\" font-size=\"10\">d</tspan></text>\n";
   }
   s << "</svg>\n";
   return s.str();
@@ -344,10 +350,14 @@ void run(const QualityOptions& o) {
     write_atomically(o.plot, svg_plot(rows, o.measure, log_scale));
     if (!o.json && !o.csv && !o.markdown) return;
   }
-  if (o.json) print_json(rows);
-  else if (o.csv) print_csv(rows);
-  else if (o.markdown) print_markdown(rows, o.relative);
-  else print_table(rows, o.relative);
+  if (o.json)
+    print_json(rows);
+  else if (o.csv)
+    print_csv(rows);
+  else if (o.markdown)
+    print_markdown(rows, o.relative);
+  else
+    print_table(rows, o.relative);
 }
 
 }  // namespace
@@ -356,8 +366,7 @@ void register_quality(CLI::App& app, int& status) {
   auto o = std::make_shared<QualityOptions>();
   CLI::App* cmd = app.add_subcommand(
       "quality", "quality, Delaunay property and protection of the Coxeter triangulations (thesis Ch. 2)");
-  cmd->add_option("--type", o->types, "family A, B, C, D, E, F or G (repeat or separate with commas)")
-      ->delimiter(',');
+  cmd->add_option("--type", o->types, "family A, B, C, D, E, F or G (repeat or separate with commas)")->delimiter(',');
   cmd->add_option("--dim", o->dim, "dimension D or range D..D2 (default: every supported d up to --max-dim)");
   cmd->add_flag("--all", o->all, "every family, every supported dimension up to --max-dim");
   cmd->add_option("--max-dim", o->max_dim, "largest dimension for --all or without --dim")->capture_default_str();

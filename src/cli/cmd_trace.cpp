@@ -79,8 +79,10 @@ class ProgressDisplay {
     return buffer;
   }
   void show(const std::string& line) {
-    if (tty_) std::fprintf(stderr, "\r\033[K  %s", line.c_str());
-    else std::fprintf(stderr, "coxmesh: %s\n", line.c_str());
+    if (tty_)
+      std::fprintf(stderr, "\r\033[K  %s", line.c_str());
+    else
+      std::fprintf(stderr, "coxmesh: %s\n", line.c_str());
     std::fflush(stderr);
     shown_ = true;
   }
@@ -98,7 +100,8 @@ void run(TraceCliOptions o) {
   const bool from_points = !o.points.file.empty();
   if (from_points) {
     for (const CLI::Option* opt : o.preset_only)
-      if (opt->count() && opt != o.m_option) throw InputError(opt->get_name() + " is a preset parameter; it does not apply to --points");
+      if (opt->count() && opt != o.m_option)
+        throw InputError(opt->get_name() + " is a preset parameter; it does not apply to --points");
   } else if (from_text) {
     for (const CLI::Option* opt : o.preset_only)
       if (opt->count()) throw InputError(opt->get_name() + " is a preset parameter; it does not apply to --function");
@@ -108,7 +111,8 @@ void run(TraceCliOptions o) {
     for (const CLI::Option* opt : given) {
       if (!opt->count()) continue;
       for (const PresetInfo& info : preset_catalogue())
-        if (info.name == o.preset && std::find(info.parameters.begin(), info.parameters.end(), opt->get_name()) == info.parameters.end())
+        if (info.name == o.preset &&
+            std::find(info.parameters.begin(), info.parameters.end(), opt->get_name()) == info.parameters.end())
           throw InputError(opt->get_name() + " does not apply to the preset " + o.preset + " (" + info.summary + ")");
     }
   }
@@ -116,13 +120,14 @@ void run(TraceCliOptions o) {
   // Samples: read and prepared once; their functions are thread-safe and shared by the workers.
   std::optional<LoadedPointCloud> cloud;
   if (from_points) {
-    cloud = load_point_cloud(o.points, o.m_option->count() ? std::optional<int>(o.params.m) : std::nullopt, o.params.dim,
-                             o.tri.edge_length);
+    cloud = load_point_cloud(o.points, o.m_option->count() ? std::optional<int>(o.params.m) : std::nullopt,
+                             o.params.dim, o.tri.edge_length);
     if (cloud->problem.diagnostics.frames_inconsistent && !o.quiet)
       std::cerr << "coxmesh: warning: " << cloud->problem.diagnostics.warning << "\n";
   }
   if (!from_text && !cloud && !o.center.empty()) o.params.center = parse_point(o.center, "--center");
-  std::function<std::pair<FunctionPtr, FunctionPtr>()> make_problem = [&o, &cloud, from_text]() -> std::pair<FunctionPtr, FunctionPtr> {
+  std::function<std::pair<FunctionPtr, FunctionPtr>()> make_problem =
+      [&o, &cloud, from_text]() -> std::pair<FunctionPtr, FunctionPtr> {
     FunctionPtr f, domain;
     if (cloud) {
       f = cloud->problem.function;
@@ -138,14 +143,17 @@ void run(TraceCliOptions o) {
     // Domains: the preset's (replaced by --domain-ball if given), then each --domain and --cut,
     // intersected by max.
     if (o.domain_ball) {
-      std::vector<double> c = o.domain_center.empty() ? std::vector<double>(d, 0.0) : parse_point(o.domain_center, "--domain-center");
-      if (static_cast<int>(c.size()) != d) throw InputError("--domain-center must have " + std::to_string(d) + " coordinates");
+      std::vector<double> c =
+          o.domain_center.empty() ? std::vector<double>(d, 0.0) : parse_point(o.domain_center, "--domain-center");
+      if (static_cast<int>(c.size()) != d)
+        throw InputError("--domain-center must have " + std::to_string(d) + " coordinates");
       domain = ball_domain(c, *o.domain_ball);
     }
     for (const std::string& text : o.domains) domain = domain_intersection(domain, expression_domain(text, d));
     if (!o.cut.empty()) {
       std::vector<double> nc = parse_point(o.cut, "--cut");
-      if (static_cast<int>(nc.size()) != d + 1) throw InputError("--cut needs d+1 = " + std::to_string(d + 1) + " numbers n1,...,nd,c");
+      if (static_cast<int>(nc.size()) != d + 1)
+        throw InputError("--cut needs d+1 = " + std::to_string(d + 1) + " numbers n1,...,nd,c");
       const double c = nc.back();
       nc.pop_back();
       domain = domain_intersection(domain, half_space_domain(nc, c));
@@ -171,14 +179,21 @@ void run(TraceCliOptions o) {
   // The output file is checked before the (possibly long) trace: format and projection spec.
   std::string output = o.output;
   if (output.empty() && !o.no_output && !o.json)
-    output = (cloud ? std::filesystem::path(o.points.file).stem().string() : from_text ? std::string("manifold") : o.preset) + ".vtu";
+    output = (cloud       ? std::filesystem::path(o.points.file).stem().string()
+              : from_text ? std::string("manifold")
+                          : o.preset) +
+             ".vtu";
   if (o.no_output && !o.output.empty()) throw InputError("--no-output contradicts -o " + o.output);
   const bool write = !output.empty();
-  const MeshFormat format = !write ? MeshFormat::vtu : o.format.empty() ? format_of_path(output) : parse_format(o.format);
+  const MeshFormat format = !write             ? MeshFormat::vtu
+                            : o.format.empty() ? format_of_path(output)
+                                               : parse_format(o.format);
   if (write) {
-    if (output == "-" && format == MeshFormat::cxm) throw InputError("-o -: the native format is binary; give a file name");
+    if (output == "-" && format == MeshFormat::cxm)
+      throw InputError("-o -: the native format is binary; give a file name");
     check_writable(output);
-    if (format != MeshFormat::cxm) make_projection(o.project, d, {});  // the spec fits d (pca and files: checked again on the points)
+    if (format != MeshFormat::cxm)
+      make_projection(o.project, d, {});  // the spec fits d (pca and files: checked again on the points)
   }
 
   MeshOptions mo;
@@ -192,7 +207,8 @@ void run(TraceCliOptions o) {
       throw InputError("--box needs 2d = " + std::to_string(2 * d) + " numbers lo1,...,lod,hi1,...,hid");
     mo.search_box = {std::vector<double>(b.begin(), b.begin() + d), std::vector<double>(b.begin() + d, b.end())};
     for (int i = 0; i < d; ++i)
-      if (!(mo.search_box.lo[i] < mo.search_box.hi[i])) throw InputError("--box: lo must be below hi in every coordinate");
+      if (!(mo.search_box.lo[i] < mo.search_box.hi[i]))
+        throw InputError("--box: lo must be below hi in every coordinate");
   } else if (cloud) {
     mo.search_box = cloud->problem.box;  // the samples' box, widened by the tube
   }
@@ -212,7 +228,8 @@ void run(TraceCliOptions o) {
   for (const std::string& s : o.seeds) {
     std::vector<double> x = parse_point(s, "--seed");
     if (static_cast<int>(x.size()) != d)
-      throw InputError("--seed " + s + " has " + std::to_string(x.size()) + " coordinates, expected " + std::to_string(d));
+      throw InputError("--seed " + s + " has " + std::to_string(x.size()) + " coordinates, expected " +
+                       std::to_string(d));
     mo.seeds.push_back(std::move(x));
   }
   if (cloud) {  // samples spread over every component of the neighbour graph, as they are
@@ -250,11 +267,14 @@ void run(TraceCliOptions o) {
     report.cell_complex_seconds = lp.cell_complex_seconds;
     report.topology_seconds = lp.topology_seconds;
   } else {
-    report = mesh_manifold(t, [&]() -> ManifoldFunctions {
-      if (first) return first = false, ManifoldFunctions{f, domain};
-      auto [fw, dw] = make_problem();
-      return {fw, dw};
-    }, mo);
+    report = mesh_manifold(
+        t,
+        [&]() -> ManifoldFunctions {
+          if (first) return first = false, ManifoldFunctions{f, domain};
+          auto [fw, dw] = make_problem();
+          return {fw, dw};
+        },
+        mo);
   }
   const CellComplex& cc = report.cells;
   const TopologyReport& topo = report.topology;
@@ -292,9 +312,10 @@ void run(TraceCliOptions o) {
       j["point_cloud"] = point_cloud_json(*cloud);
       j["point_cloud"]["oracle"] = o.points.oracle;
       if (defects) j["point_cloud"]["local_pca_defects"] = *defects;
-    }
-    else if (from_text) j["function"] = o.function;
-    else j["preset"] = o.preset;
+    } else if (from_text)
+      j["function"] = o.function;
+    else
+      j["preset"] = o.preset;
     j["function_evaluations"] = report.function_evaluations;
     j["oracle_calls"] = report.oracle_calls;
     j["seeds"] = report.seeds;
@@ -303,12 +324,15 @@ void run(TraceCliOptions o) {
     if (!report.message.empty()) j["message"] = report.message;
     if (!report.warnings.empty()) j["warnings"] = report.warnings;
     j["timings"] = {{"trace_seconds", report.trace_seconds},
-                      {"cell_complex_seconds", report.cell_complex_seconds},
-                      {"topology_seconds", report.topology_seconds}};
+                    {"cell_complex_seconds", report.cell_complex_seconds},
+                    {"topology_seconds", report.topology_seconds}};
     if (write) {
       j["timings"]["write_seconds"] = write_s;
-      j["output"] = {{"path", output}, {"format", format_name(format)}, {"points", written.points},
-                     {"cells", written.cells}, {"skipped_cells", written.skipped}};
+      j["output"] = {{"path", output},
+                     {"format", format_name(format)},
+                     {"points", written.points},
+                     {"cells", written.cells},
+                     {"skipped_cells", written.skipped}};
     }
     j["peak_memory_bytes"] = peak_memory_bytes();
     out << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
@@ -319,16 +343,18 @@ void run(TraceCliOptions o) {
       out << "  local-pca defects  " << *defects
           << " cofacets of traced simplices see an odd number of intersected facets (0: a manifold)\n";
     print_topology(out, cc, topo);
-    if (automatic) out << "  seeds              " << automatic << (cloud ? " samples" : " found automatically in the box") << "\n";
+    if (automatic)
+      out << "  seeds              " << automatic << (cloud ? " samples" : " found automatically in the box") << "\n";
     out << "  F evaluations      " << report.function_evaluations << " (" << report.oracle_calls << " oracle calls)\n"
-              << "  time               trace " << report.trace_seconds << " s ("
-              << static_cast<long long>(cc.interior[0].size() / std::max(report.trace_seconds, 1e-9)) << " simplices/s), cell complex "
-              << report.cell_complex_seconds << " s, topology " << report.topology_seconds << " s";
+        << "  time               trace " << report.trace_seconds << " s ("
+        << static_cast<long long>(cc.interior[0].size() / std::max(report.trace_seconds, 1e-9))
+        << " simplices/s), cell complex " << report.cell_complex_seconds << " s, topology " << report.topology_seconds
+        << " s";
     if (write) out << ", write " << write_s << " s";
     out << "\n  peak memory        " << peak_memory_bytes() / (1 << 20) << " MiB\n";
     if (write) {
       out << "  output             " << output << " (" << format_name(format) << ", " << written.points << " points, "
-                << written.cells << " cells";
+          << written.cells << " cells";
       if (written.skipped) out << "; " << written.skipped << " open cells at the cut not written";
       out << ")\n";
     }
@@ -340,20 +366,25 @@ void run(TraceCliOptions o) {
 
 void register_trace(CLI::App& app, int& status) {
   auto o = std::make_shared<TraceCliOptions>();
-  CLI::App* cmd = app.add_subcommand("trace", "mesh a manifold: trace it through the ambient triangulation, report its "
-                                              "topology and write it (default: the torus, to torus.vtu)");
-  auto* preset = cmd->add_option("--preset", o->preset, "built-in manifold (see `coxmesh presets`)")->capture_default_str();
-  CLI::Option* function = cmd->add_option("--function", o->function,
-                  "the manifold as equations \"e1; e2; ...\" = 0 in x1..xd (x,y,z,w when d <= 4), e.g. "
-                  "\"x^2+y^2+z^2-1\"")
-      ->excludes(preset);
+  CLI::App* cmd = app.add_subcommand("trace",
+                                     "mesh a manifold: trace it through the ambient triangulation, report its "
+                                     "topology and write it (default: the torus, to torus.vtu)");
+  auto* preset =
+      cmd->add_option("--preset", o->preset, "built-in manifold (see `coxmesh presets`)")->capture_default_str();
+  CLI::Option* function =
+      cmd->add_option("--function", o->function,
+                      "the manifold as equations \"e1; e2; ...\" = 0 in x1..xd (x,y,z,w when d <= 4), e.g. "
+                      "\"x^2+y^2+z^2-1\"")
+          ->excludes(preset);
   o->function_given = function;
   o->m_option = cmd->add_option("--m", o->params.m, "intrinsic dimension (sphere, plane; --points: default d-1)");
   o->preset_only.push_back(o->m_option);
-  o->dim_given = cmd->add_option("--dim", o->params.dim, "ambient dimension d (sphere, moment-curve, plane; --function when the "
-                                          "variables do not show it)");
+  o->dim_given = cmd->add_option("--dim", o->params.dim,
+                                 "ambient dimension d (sphere, moment-curve, plane; --function when the "
+                                 "variables do not show it)");
   o->preset_only.push_back(cmd->add_option("--radius", o->params.radius, "radius parameter of the preset"));
-  o->preset_only.push_back(cmd->add_option("--minor-radius", o->params.minor_radius, "second radius (torus, flat-torus)"));
+  o->preset_only.push_back(
+      cmd->add_option("--minor-radius", o->params.minor_radius, "second radius (torus, flat-torus)"));
   o->preset_only.push_back(cmd->add_option("--center", o->center, "centre c1,...,cd (sphere, plane's domain)"));
   o->points.add_to(*cmd);
   o->points.option->excludes(preset)->excludes(function);
@@ -365,22 +396,26 @@ void register_trace(CLI::App& app, int& status) {
       ->capture_default_str()
       ->check(unsigned_integer());
   cmd->add_option_function<std::string>(
-         "--max-memory", [o](const std::string& text) { o->max_memory = parse_bytes(text, "--max-memory"); },
-         "stop before tracing more than fits in about this much memory: bytes, or with a suffix K, M, G, T "
-         "(default: 3/4 of the machine's memory)");
+      "--max-memory", [o](const std::string& text) { o->max_memory = parse_bytes(text, "--max-memory"); },
+      "stop before tracing more than fits in about this much memory: bytes, or with a suffix K, M, G, T "
+      "(default: 3/4 of the machine's memory)");
   cmd->add_option("--box", o->box,
                   "lo1,...,lod,hi1,...,hid: stop at this box and search seeds in it (--function: default [-2,2]^d)");
-  cmd->add_option("--domain", o->domains, "keep the part where this expression is < 0; repeat to intersect")->take_all();
+  cmd->add_option("--domain", o->domains, "keep the part where this expression is < 0; repeat to intersect")
+      ->take_all();
   cmd->add_option("--domain-ball", o->domain_ball, "keep the part inside the ball of this radius");
-  o->domain_center_given = cmd->add_option("--domain-center", o->domain_center, "centre of --domain-ball (default: origin)");
+  o->domain_center_given =
+      cmd->add_option("--domain-center", o->domain_center, "centre of --domain-ball (default: origin)");
   cmd->add_option("--cut", o->cut, "n1,...,nd,c: keep the part where <n,x> < c");
   cmd->add_option("-o,--output", o->output,
                   "write the mesh to FILE (.vtu .off .ply .obj .mesh .cxm); default NAME.vtu (not with --json)");
-  cmd->add_option("--format", o->format, "output format, overriding the extension: vtu, off, noff, ply, obj, mesh, cxm");
+  cmd->add_option("--format", o->format,
+                  "output format, overriding the extension: vtu, off, noff, ply, obj, mesh, cxm");
   cmd->add_option("--project", o->project,
                   "3D formats with d != 3: coordinates i,j,k (1-based, default 1,2,3), pca, or a file of 3 rows of d "
                   "numbers");
-  cmd->add_option("--threads", o->threads, "worker threads (0: all hardware threads); the result is the same for any number")
+  cmd->add_option("--threads", o->threads,
+                  "worker threads (0: all hardware threads); the result is the same for any number")
       ->capture_default_str()
       ->check(CLI::Range(0, 1024));
   cmd->add_flag("--no-output", o->no_output, "write no file");
@@ -390,7 +425,8 @@ void register_trace(CLI::App& app, int& status) {
 
   CLI::App* presets = app.add_subcommand("presets", "list the built-in manifolds");
   presets->callback([&status] {
-    for (const auto& p : preset_catalogue()) std::cout << p.name << std::string(18 - p.name.size(), ' ') << p.summary << "\n";
+    for (const auto& p : preset_catalogue())
+      std::cout << p.name << std::string(18 - p.name.size(), ' ') << p.summary << "\n";
     status = 0;
   });
 }

@@ -83,10 +83,14 @@ std::string printable(const std::string& text, std::size_t max_length) {
   std::string out;
   for (unsigned char c : text) {
     if (out.size() >= max_length) return out + "...";
-    if (c == '\n') out += "\\n";
-    else if (c == '\t') out += "\\t";
-    else if (c < 0x20 || c == 0x7f) out += '?';
-    else out += static_cast<char>(c);
+    if (c == '\n')
+      out += "\\n";
+    else if (c == '\t')
+      out += "\\t";
+    else if (c < 0x20 || c == 0x7f)
+      out += '?';
+    else
+      out += static_cast<char>(c);
   }
   return out;
 }
@@ -104,7 +108,8 @@ std::uint64_t parse_bytes(const std::string& text, const std::string& what) {
   }
   const std::optional<std::uint64_t> v = parse_unsigned(digits);
   if (!v || *v == 0 || *v > (~std::uint64_t{0} >> shift))
-    throw InputError(what + ": '" + printable(text) + "' is not a positive size (bytes, or a number with K, M, G or T)");
+    throw InputError(what + ": '" + printable(text) +
+                     "' is not a positive size (bytes, or a number with K, M, G or T)");
   return *v << shift;
 }
 
@@ -117,7 +122,8 @@ std::uint64_t default_memory_limit() {
 const CLI::Validator& unsigned_integer() {
   static const CLI::Validator v(
       [](std::string& text) {
-        return parse_unsigned(text) ? std::string() : "'" + printable(text) + "' is not a non-negative integer below 2^64";
+        return parse_unsigned(text) ? std::string()
+                                    : "'" + printable(text) + "' is not a non-negative integer below 2^64";
       },
       "UINT");
   return v;

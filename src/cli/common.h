@@ -16,7 +16,7 @@ struct TriangulationOptions {
   std::string kind = "coxeter";  // coxeter | freudenthal
   std::string matrix_file;       // replaces the whole linear part
   std::optional<double> scale, edge_length;
-  std::string offset;            // "b1,...,bd"
+  std::string offset;  // "b1,...,bd"
   std::optional<std::uint64_t> rotation_seed;
 
   void add_to(CLI::App& app);

@@ -140,7 +140,8 @@ struct CoxmeshOutcome : Outcome {
 };
 
 std::vector<std::pair<Simplex, std::vector<double>>> from_index(const coxmesh::PackedKeyIndex& index,
-                                                                const coxmesh::UninitializedHugeVector<double>& points, int d) {
+                                                                const coxmesh::UninitializedHugeVector<double>& points,
+                                                                int d) {
   std::vector<std::pair<Simplex, std::vector<double>>> out;
   for (std::uint32_t i = 0; i < index.size(); ++i)
     out.emplace_back(index.simplex(i, d), std::vector<double>(points.begin() + i * d, points.begin() + (i + 1) * d));
@@ -191,7 +192,8 @@ std::string difference(const std::vector<Simplex>& a, const std::vector<Simplex>
   return os.str();
 }
 
-void expect_same_simplices(const std::vector<Simplex>& gudhi, const std::vector<Simplex>& ours, const std::string& what) {
+void expect_same_simplices(const std::vector<Simplex>& gudhi, const std::vector<Simplex>& ours,
+                           const std::string& what) {
   EXPECT_EQ(gudhi.size(), ours.size()) << what;
   EXPECT_TRUE(gudhi == ours) << what << ": only in GUDHI: " << difference(gudhi, ours)
                              << "\n  only in coxmesh: " << difference(ours, gudhi);
@@ -218,9 +220,11 @@ void expect_agreement(const Outcome& gudhi, const CoxmeshOutcome& ours, double s
   ASSERT_EQ(gudhi.interior_cells.size(), ours.interior_cells.size()) << what;
   ASSERT_EQ(gudhi.boundary_cells.size(), ours.boundary_cells.size()) << what;
   for (std::size_t j = 0; j < gudhi.interior_cells.size(); ++j)
-    expect_same_simplices(gudhi.interior_cells[j], ours.interior_cells[j], what + ", interior cells of dim " + std::to_string(j));
+    expect_same_simplices(gudhi.interior_cells[j], ours.interior_cells[j],
+                          what + ", interior cells of dim " + std::to_string(j));
   for (std::size_t j = 0; j < gudhi.boundary_cells.size(); ++j)
-    expect_same_simplices(gudhi.boundary_cells[j], ours.boundary_cells[j], what + ", boundary cells of dim " + std::to_string(j));
+    expect_same_simplices(gudhi.boundary_cells[j], ours.boundary_cells[j],
+                          what + ", boundary cells of dim " + std::to_string(j));
   EXPECT_EQ(list(gudhi.cell_counts()), list(ours.topology.cells)) << what;
   EXPECT_EQ(list(gudhi.boundary_cell_counts()), list(ours.topology.boundary_cells)) << what;
   // Same points: both are Σ λ_j v_j of the PL interpolant (boundary: the point of μ where F̂ = D̂ = 0),
@@ -284,12 +288,18 @@ TEST(GudhiTracing, CircleInR2WithOffset_Spec) {
   EXPECT_EQ(list(c.topology.cells), "12/12");
   // GUDHI: the 12 simplices and their points.
   const std::vector<std::pair<std::string, std::vector<double>>> expected{
-      {"(0,0) [{0},{1,2}]", {0.1, 0.811050152}},         {"(0,0) [{0,1},{2}]", {0.638465284, 0.510883077}},
-      {"(0,0) [{1},{0,2}]", {0.829426398, -0.221134528}},  {"(0,-1) [{1},{0,2}]", {-0.596341343, 0.602032862}},
-      {"(-1,0) [{0,1},{2}]", {0.282268674, -0.84946767}},  {"(-1,0) [{1},{0,2}]", {0.129800846, -0.971906065}},
-      {"(-1,-1) [{0},{1,2}]", {-0.9, -0.258333333}},       {"(-1,-2) [{1},{0,2}]", {-0.917647781, -0.367161318}},
-      {"(-2,-1) [{0,1},{2}]", {0.0648674022, -0.974984353}}, {"(-2,-1) [{0},{1,2}]", {-0.9, -0.4022831}},
-      {"(-2,-2) [{0,1},{2}]", {-0.913338743, -0.385051396}}, {"(-2,0) [{0},{1,2}]", {0.1, -0.980335094}}};
+      {"(0,0) [{0},{1,2}]", {0.1, 0.811050152}},
+      {"(0,0) [{0,1},{2}]", {0.638465284, 0.510883077}},
+      {"(0,0) [{1},{0,2}]", {0.829426398, -0.221134528}},
+      {"(0,-1) [{1},{0,2}]", {-0.596341343, 0.602032862}},
+      {"(-1,0) [{0,1},{2}]", {0.282268674, -0.84946767}},
+      {"(-1,0) [{1},{0,2}]", {0.129800846, -0.971906065}},
+      {"(-1,-1) [{0},{1,2}]", {-0.9, -0.258333333}},
+      {"(-1,-2) [{1},{0,2}]", {-0.917647781, -0.367161318}},
+      {"(-2,-1) [{0,1},{2}]", {0.0648674022, -0.974984353}},
+      {"(-2,-1) [{0},{1,2}]", {-0.9, -0.4022831}},
+      {"(-2,-2) [{0,1},{2}]", {-0.913338743, -0.385051396}},
+      {"(-2,0) [{0},{1,2}]", {0.1, -0.980335094}}};
   ASSERT_EQ(c.interior.size(), expected.size());
   for (const auto& [text, point] : expected) {
     const Simplex s = coxmesh::parse_simplex(text);
@@ -325,7 +335,8 @@ TEST_P(GudhiTracingSphere, RandomOffset) {
       g = run_gudhi(a, b, gct::Function_Sm_in_Rd(p.radius, p.m, p.d), seed);
     }
     const CoxmeshOutcome c = run_coxmesh(a, b, coxmesh::sphere(p.m, p.d, p.radius), seed);
-    const std::string what = "S^" + std::to_string(p.m) + " in R^" + std::to_string(p.d) + ", trial " + std::to_string(trial);
+    const std::string what =
+        "S^" + std::to_string(p.m) + " in R^" + std::to_string(p.d) + ", trial " + std::to_string(trial);
     expect_agreement(g, c, p.scale, what);
     EXPECT_EQ(c.topology.euler_characteristic, p.m % 2 == 0 ? 2 : 0) << what;
   }
@@ -369,7 +380,8 @@ TEST(GudhiTracing, FlatTorusInR4RandomOffset) {
     const std::vector<double> seed{r, 0, r, 0};
     const auto circle = gct::Function_Sm_in_Rd(r, 1);
     const Outcome g = run_gudhi(a, b, gct::make_product_function(circle, circle), seed);
-    const CoxmeshOutcome c = run_coxmesh(a, b, coxmesh::product(coxmesh::sphere(1, 2, r), coxmesh::sphere(1, 2, r)), seed);
+    const CoxmeshOutcome c =
+        run_coxmesh(a, b, coxmesh::product(coxmesh::sphere(1, 2, r), coxmesh::sphere(1, 2, r)), seed);
     expect_agreement(g, c, scale, "flat torus in R^4, trial " + std::to_string(trial));
     EXPECT_EQ(c.topology.euler_characteristic, 0);
     EXPECT_EQ(list(c.topology.betti), "1/2/1");
@@ -385,7 +397,8 @@ TEST(GudhiTracing, SphereInR3WithBallDomainRandomOffset) {
     const Eigen::MatrixXd a = gudhi_matrix(3, scale);
     const Eigen::VectorXd b = random_offset(rng, 3, scale);
     const std::vector<double> seed{r, 0, 0};
-    const Outcome g = run_gudhi(a, b, gct::Function_Sm_in_Rd(r, 2), seed, gct::Function_Sm_in_Rd(0.7, 2, to_eigen(seed)));
+    const Outcome g =
+        run_gudhi(a, b, gct::Function_Sm_in_Rd(r, 2), seed, gct::Function_Sm_in_Rd(0.7, 2, to_eigen(seed)));
     const CoxmeshOutcome c = run_coxmesh(a, b, coxmesh::sphere(2, 3, r), seed, coxmesh::ball_domain(seed, 0.7));
     expect_agreement(g, c, scale, "S^2 in R^3 cut by a ball, trial " + std::to_string(trial));
     EXPECT_FALSE(c.boundary.empty());

@@ -129,8 +129,7 @@ TEST(GudhiCrossCheck, LocateFreudenthalWithOffset) {
   for (int d = kMinDim; d <= kMaxLocateDim; ++d) {
     const Eigen::VectorXd b = random_offset(rng, d);
     gct::Freudenthal_triangulation<GSimplex> gudhi(d, Eigen::MatrixXd::Identity(d, d), b);
-    expect_same_location(gudhi, coxmesh::Triangulation::freudenthal(d).with_offset(b), rng, 5000, 10.0,
-                         "FK+offset");
+    expect_same_location(gudhi, coxmesh::Triangulation::freudenthal(d).with_offset(b), rng, 5000, 10.0, "FK+offset");
   }
 }
 

@@ -84,8 +84,10 @@ void expect_complexes_equal(const CellComplex& a, const CellComplex& b, const st
   EXPECT_EQ(a.manifold_dimension, b.manifold_dimension);
   ASSERT_EQ(a.interior.size(), b.interior.size());
   ASSERT_EQ(a.boundary.size(), b.boundary.size());
-  for (std::size_t j = 0; j < a.interior.size(); ++j) expect_levels_equal(a.interior[j], b.interior[j], name + " interior " + std::to_string(j));
-  for (std::size_t j = 0; j < a.boundary.size(); ++j) expect_levels_equal(a.boundary[j], b.boundary[j], name + " boundary " + std::to_string(j));
+  for (std::size_t j = 0; j < a.interior.size(); ++j)
+    expect_levels_equal(a.interior[j], b.interior[j], name + " interior " + std::to_string(j));
+  for (std::size_t j = 0; j < a.boundary.size(); ++j)
+    expect_levels_equal(a.boundary[j], b.boundary[j], name + " boundary " + std::to_string(j));
   EXPECT_EQ(a.vertices, b.vertices);  // bit-exact doubles
   EXPECT_EQ(a.boundary_vertices, b.boundary_vertices);
 }
@@ -159,8 +161,8 @@ TEST(NativeFormat, RejectsDamagedFiles) {
     std::stringstream in(s);
     return read_native(in, "damaged.cxm");
   };
-  EXPECT_THROW(read(bytes.substr(0, bytes.size() - 1)), InputError);                  // truncated
-  EXPECT_THROW(read(bytes + "x"), InputError);                                        // trailing bytes
+  EXPECT_THROW(read(bytes.substr(0, bytes.size() - 1)), InputError);                        // truncated
+  EXPECT_THROW(read(bytes + "x"), InputError);                                              // trailing bytes
   EXPECT_THROW(read("not a cxm file\n" + bytes.substr(bytes.find('\n') + 1)), InputError);  // bad header
   EXPECT_THROW(read(""), InputError);
   // A facet id out of range: the first facet id of level 1 (after the level-0 keys and offsets).
@@ -225,7 +227,8 @@ TEST(NativeFormat, RejectsHeaderNumbersThatAreNotCounts) {
       EXPECT_NE(std::string(e.what()).find("not an integer"), std::string::npos) << why << ": " << e.what();
     }
   };
-  expect_refused(replaced("\"facet_entries\":0", "\"facet_entries\":3088888888888888888888888888888888e40"), "3e69 facets");
+  expect_refused(replaced("\"facet_entries\":0", "\"facet_entries\":3088888888888888888888888888888888e40"),
+                 "3e69 facets");
   expect_refused(replaced("\"facet_entries\":0", "\"facet_entries\":0.5"), "half a facet");
   expect_refused(replaced("\"ambient_dimension\":3", "\"ambient_dimension\":3.0"), "d = 3.0");
   expect_refused(replaced("\"ambient_dimension\":3", "\"ambient_dimension\":4294967299"), "d = 2^32 + 3");
@@ -285,7 +288,9 @@ TEST(Polygons, PolyhedraAreClosed) {
           vertices.insert(polygons[f].begin(), polygons[f].end());
           edge_uses += polygons[f].size();
         }
-        EXPECT_EQ(static_cast<long>(vertices.size()) - static_cast<long>(edge_uses / 2) + static_cast<long>(faces[p].size()), 2)
+        EXPECT_EQ(
+            static_cast<long>(vertices.size()) - static_cast<long>(edge_uses / 2) + static_cast<long>(faces[p].size()),
+            2)
             << c.name;
       }
     }
@@ -306,7 +311,8 @@ TEST(Polygons, SurfacesAreConsistentlyOrientedOutwards) {
       const double* a = &xs[3 * cy[0]];
       for (std::size_t k = 1; k + 1 < cy.size(); ++k) {
         const double *b = &xs[3 * cy[k]], *d = &xs[3 * cy[k + 1]];
-        volume += a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) + a[2] * (b[0] * d[1] - b[1] * d[0]);
+        volume += a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) +
+                  a[2] * (b[0] * d[1] - b[1] * d[0]);
       }
     }
     for (const auto& [e, n] : directed) {
@@ -436,7 +442,9 @@ TEST(Writers, OffPlyObjMeditReadBack) {
       }
     EXPECT_EQ(sections["Triangles"], triangles) << c.name;
     EXPECT_EQ(sections["Tetrahedra"], tets) << c.name;
-    EXPECT_EQ(sections["Edges"], m == 1 ? cell_count(cc, CellKind::interior, 1) : m == 2 ? cell_count(cc, CellKind::boundary, 1) : 0u)
+    EXPECT_EQ(sections["Edges"], m == 1   ? cell_count(cc, CellKind::interior, 1)
+                                 : m == 2 ? cell_count(cc, CellKind::boundary, 1)
+                                          : 0u)
         << c.name;
   }
   fs::remove_all(dir);
@@ -448,7 +456,8 @@ TEST(Writers, MeditTetrahedraFillTheBallPositively) {
   Eigen::MatrixXd n = Eigen::MatrixXd::Zero(4, 1);
   n(3, 0) = 1;
   const Case c{"3-ball", affine_plane(n, Eigen::VectorXd::Zero(4)), ball_domain({0, 0, 0, 0}, 1.0), 0.3};
-  const Triangulation t = Triangulation::coxeter(4).with_longest_edge(c.edge).with_offset(Eigen::Vector4d(0.01, 0.02, 0.03, 0.0123));
+  const Triangulation t =
+      Triangulation::coxeter(4).with_longest_edge(c.edge).with_offset(Eigen::Vector4d(0.01, 0.02, 0.03, 0.0123));
   ImplicitOracle oracle(t, c.f, c.domain);
   const CellComplex cc = build_cell_complex(trace_manifold(t, oracle, {{0.1, 0.1, 0.1, 0.0}}));
   std::stringstream out;
@@ -469,7 +478,9 @@ TEST(Writers, MeditTetrahedraFillTheBallPositively) {
     }
     double a[3], b[3], w[3];
     for (int i = 0; i < 3; ++i) a[i] = v[1][i] - v[0][i], b[i] = v[2][i] - v[0][i], w[i] = v[3][i] - v[0][i];
-    const double vol = (a[0] * (b[1] * w[2] - b[2] * w[1]) - a[1] * (b[0] * w[2] - b[2] * w[0]) + a[2] * (b[0] * w[1] - b[1] * w[0])) / 6;
+    const double vol =
+        (a[0] * (b[1] * w[2] - b[2] * w[1]) - a[1] * (b[0] * w[2] - b[2] * w[0]) + a[2] * (b[0] * w[1] - b[1] * w[0])) /
+        6;
     total += vol;
     smallest = std::min(smallest, vol);
   }
@@ -509,7 +520,8 @@ TEST(Projection, SpecsAndErrors) {
   // Matrix files: 3 rows of d numbers.
   const fs::path dir = temp_dir();
   std::ofstream(dir / "p.txt") << "# projection\n1 0 0 0\n0 1 0 0\n0 0 0 1\n";
-  EXPECT_EQ(project_points(make_projection((dir / "p.txt").string(), 4, pts), pts), (std::vector<double>{1, 2, 4, 5, 6, 8}));
+  EXPECT_EQ(project_points(make_projection((dir / "p.txt").string(), 4, pts), pts),
+            (std::vector<double>{1, 2, 4, 5, 6, 8}));
   EXPECT_THROW(make_projection((dir / "p.txt").string(), 3, pts), InputError);
   std::ofstream(dir / "q.txt") << "1 0 0 0\n0 1 0 0\n";
   EXPECT_THROW(make_projection((dir / "q.txt").string(), 4, pts), InputError);
@@ -610,8 +622,9 @@ std::string error_of(const std::function<void()>& f) {
 
 TEST(Expression, Errors) {
   auto has = [](const std::string& msg, const std::string& part) {
-    return msg.find(part) != std::string::npos ? ::testing::AssertionSuccess()
-                                               : ::testing::AssertionFailure() << "'" << msg << "' lacks '" << part << "'";
+    return msg.find(part) != std::string::npos
+               ? ::testing::AssertionSuccess()
+               : ::testing::AssertionFailure() << "'" << msg << "' lacks '" << part << "'";
   };
   std::string e = error_of([] { expression_function("x^2+*y"); });
   EXPECT_TRUE(has(e, "position 5"));

@@ -52,7 +52,11 @@ VertexSet vertex_set(const Simplex& s) {
 // All simplices with minimal vertex in [lo, hi]^d, as vertex sets: strict chains
 // y = v_0 < v_1 < … < v_k with v_k − y ∈ {0,1}^d (chains ∅ ⊂ A_1 ⊂ … ⊂ A_k ⊆ {0..d−1}).
 void chains(int d, std::vector<int>& y, unsigned prev, VertexSet& cur, std::vector<VertexSet>& out) {
-  { VertexSet sorted = cur; std::sort(sorted.begin(), sorted.end()); out.push_back(sorted); }
+  {
+    VertexSet sorted = cur;
+    std::sort(sorted.begin(), sorted.end());
+    out.push_back(sorted);
+  }
   for (unsigned a = prev + 1; a < (1u << d); ++a) {
     if ((a & prev) != prev) continue;  // must be a strict superset
     std::vector<int> v = y;
@@ -134,9 +138,12 @@ TEST(Cofaces, GudhiUnitTestInDimension10) {
 
 TEST(Cofaces, VertexStarIsAPermutahedron) {
   // l-cofaces of a vertex = faces of dimension d − l of the permutahedron of order d+1 (thesis §3.5).
-  const std::vector<std::vector<std::uint64_t>> expected = {
-      {1, 2}, {1, 6, 6}, {1, 14, 36, 24}, {1, 30, 150, 240, 120}, {1, 62, 540, 1560, 1800, 720},
-      {1, 126, 1806, 8400, 16800, 15120, 5040}};
+  const std::vector<std::vector<std::uint64_t>> expected = {{1, 2},
+                                                            {1, 6, 6},
+                                                            {1, 14, 36, 24},
+                                                            {1, 30, 150, 240, 120},
+                                                            {1, 62, 540, 1560, 1800, 720},
+                                                            {1, 126, 1806, 8400, 16800, 15120, 5040}};
   for (int d = 1; d <= 6; ++d) {
     const Simplex v = Simplex::vertex_simplex(std::vector<std::int32_t>(d, 3));
     for (int l = 0; l <= d; ++l) {
@@ -153,8 +160,10 @@ TEST(Cofaces, CountFormulaForEverySimplexTypeUpToDimension6) {
     for (unsigned cuts = 0; cuts < (1u << d); ++cuts) {
       std::vector<std::vector<int>> blocks{{0}};
       for (int i = 1; i <= d; ++i) {
-        if (cuts >> (i - 1) & 1) blocks.push_back({i});
-        else blocks.back().push_back(i);
+        if (cuts >> (i - 1) & 1)
+          blocks.push_back({i});
+        else
+          blocks.back().push_back(i);
       }
       const Simplex s = Simplex::from_partition(std::vector<std::int32_t>(d, -1), blocks);
       std::uint64_t facets_formula = 0, maximal_formula = 1;

@@ -31,10 +31,10 @@ TEST(Simplex, VerticesFollowTheEncoding) {
 }
 
 TEST(Simplex, MalformedTextIsRejected) {
-  for (const char* bad : {"", "(0,0)", "(0,0) [{0},{1},{2}", "(0,0) [{1,0},{2}]", "(0,0) [{0,1},{1,2}]",
-                          "(0,0) [{0},{2},{1}]", "(0,0) [{0},{1}]", "(0,0) [{0},{},{1,2}]", "(0,a) [{0,1,2}]",
-                          "(0,0) [{0,1,2}] x", "(0,0) [{0,1,3}]", "(0,99999999999) [{0,1,2}]",
-                          "(0,2000000000) [{0,1,2}]", "() [{0}]"}) {
+  for (const char* bad :
+       {"", "(0,0)", "(0,0) [{0},{1},{2}", "(0,0) [{1,0},{2}]", "(0,0) [{0,1},{1,2}]", "(0,0) [{0},{2},{1}]",
+        "(0,0) [{0},{1}]", "(0,0) [{0},{},{1,2}]", "(0,a) [{0,1,2}]", "(0,0) [{0,1,2}] x", "(0,0) [{0,1,3}]",
+        "(0,99999999999) [{0,1,2}]", "(0,2000000000) [{0,1,2}]", "() [{0}]"}) {
     EXPECT_THROW(parse_simplex(bad), InputError) << bad;
   }
   // d too large.
@@ -62,8 +62,10 @@ Simplex random_simplex(std::mt19937_64& rng, int d) {
   perm.push_back(d);
   std::vector<std::vector<int>> blocks{{perm[0]}};
   for (int i = 1; i <= d; ++i) {
-    if (rng() % 2 && perm[i] != d) blocks.push_back({perm[i]});
-    else blocks.back().push_back(perm[i]);
+    if (rng() % 2 && perm[i] != d)
+      blocks.push_back({perm[i]});
+    else
+      blocks.back().push_back(perm[i]);
   }
   // d must end in the last block: move it there if the shuffle left it elsewhere (it is last).
   std::vector<std::int32_t> y(d);

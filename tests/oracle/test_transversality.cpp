@@ -57,7 +57,8 @@ TEST(Transversality, AgreesWithExactReferenceOnDegenerateMatrices) {
       std::vector<double> m(n * n);
       for (int c = 0; c < n; ++c) {
         m[c * n] = 1;
-        for (int r = 1; r < n; ++r) m[c * n + r] = static_cast<double>(static_cast<int>(rng() % 5) - 2) / ((rng() % 2) ? 1 : 2);
+        for (int r = 1; r < n; ++r)
+          m[c * n + r] = static_cast<double>(static_cast<int>(rng() % 5) - 2) / ((rng() % 2) ? 1 : 2);
       }
       if (trial % 3 == 0) {  // a vertex exactly on M
         const int c = static_cast<int>(rng() % n);

@@ -57,7 +57,8 @@ struct Frac {
   friend Frac operator-(Frac a, Frac b) { return a + Frac(-b.n, b.d); }
   friend Frac operator*(Frac a, Frac b) {
     const i128 g1 = gcd128(a.n, b.d), g2 = gcd128(b.n, a.d);
-    return {checked_mul(a.n / (g1 ? g1 : 1), b.n / (g2 ? g2 : 1)), checked_mul(a.d / (g2 ? g2 : 1), b.d / (g1 ? g1 : 1))};
+    return {checked_mul(a.n / (g1 ? g1 : 1), b.n / (g2 ? g2 : 1)),
+            checked_mul(a.d / (g2 ? g2 : 1), b.d / (g1 ? g1 : 1))};
   }
   friend Frac operator/(Frac a, Frac b) {
     if (b.n == 0) throw std::domain_error("Frac division by zero");
@@ -104,8 +105,12 @@ std::vector<std::vector<int>> doubled_simple_roots(Family f, int d) {
     s.push_back(v);
   };
   switch (f) {
-    case Family::A: for (int i = 1; i <= d; ++i) e({{i, 2}, {i + 1, -2}}); break;
-    case Family::B: case Family::C: case Family::D:
+    case Family::A:
+      for (int i = 1; i <= d; ++i) e({{i, 2}, {i + 1, -2}});
+      break;
+    case Family::B:
+    case Family::C:
+    case Family::D:
       for (int i = 1; i < d; ++i) e({{i, 2}, {i + 1, -2}});
       if (f == Family::B) e({{d, 2}});
       if (f == Family::C) e({{d, 4}});
@@ -116,36 +121,66 @@ std::vector<std::vector<int>> doubled_simple_roots(Family f, int d) {
       e({{1, 2}, {2, 2}});
       for (int k = 3; k <= d; ++k) e({{k - 1, 2}, {k - 2, -2}});
       break;
-    case Family::F: e({{2, 2}, {3, -2}}); e({{3, 2}, {4, -2}}); e({{4, 2}}); e({{1, 1}, {2, -1}, {3, -1}, {4, -1}}); break;
-    case Family::G: e({{1, 2}, {2, -2}}); e({{1, -4}, {2, 2}, {3, 2}}); break;
+    case Family::F:
+      e({{2, 2}, {3, -2}});
+      e({{3, 2}, {4, -2}});
+      e({{4, 2}});
+      e({{1, 1}, {2, -1}, {3, -1}, {4, -1}});
+      break;
+    case Family::G:
+      e({{1, 2}, {2, -2}});
+      e({{1, -4}, {2, 2}, {3, 2}});
+      break;
   }
   return s;
 }
 
 std::vector<int> bourbaki_highest_root(Family f, int d) {
   switch (f) {
-    case Family::A: return std::vector<int>(d, 1);
-    case Family::B: { std::vector<int> c(d, 2); c[0] = 1; return c; }
-    case Family::C: { std::vector<int> c(d, 2); c[d - 1] = 1; return c; }
-    case Family::D: { std::vector<int> c(d, 2); c[0] = c[d - 2] = c[d - 1] = 1; return c; }
+    case Family::A:
+      return std::vector<int>(d, 1);
+    case Family::B: {
+      std::vector<int> c(d, 2);
+      c[0] = 1;
+      return c;
+    }
+    case Family::C: {
+      std::vector<int> c(d, 2);
+      c[d - 1] = 1;
+      return c;
+    }
+    case Family::D: {
+      std::vector<int> c(d, 2);
+      c[0] = c[d - 2] = c[d - 1] = 1;
+      return c;
+    }
     case Family::E:
       if (d == 6) return {1, 2, 2, 3, 2, 1};
       if (d == 7) return {2, 2, 3, 4, 3, 2, 1};
       return {2, 3, 4, 6, 5, 4, 3, 2};
-    case Family::F: return {2, 3, 4, 2};
-    case Family::G: return {3, 2};
+    case Family::F:
+      return {2, 3, 4, 2};
+    case Family::G:
+      return {3, 2};
   }
   return {};
 }
 
 int expected_root_count(Family f, int d) {
   switch (f) {
-    case Family::A: return d * (d + 1);
-    case Family::B: case Family::C: return 2 * d * d;
-    case Family::D: return 2 * d * (d - 1);
-    case Family::E: return d == 6 ? 72 : d == 7 ? 126 : 240;
-    case Family::F: return 48;
-    case Family::G: return 12;
+    case Family::A:
+      return d * (d + 1);
+    case Family::B:
+    case Family::C:
+      return 2 * d * d;
+    case Family::D:
+      return 2 * d * (d - 1);
+    case Family::E:
+      return d == 6 ? 72 : d == 7 ? 126 : 240;
+    case Family::F:
+      return 48;
+    case Family::G:
+      return 12;
   }
   return 0;
 }
@@ -291,7 +326,8 @@ TEST(RootSystem, CartanMatricesAndDiagrams) {
   EXPECT_EQ(affine_coxeter_diagram(make_root_system(Family::A, 1)), (std::vector<DiagramEdge>{{0, 1, 0}}));  // ∞
   // E8 (Bourbaki numbering): 1-3-4-5-6-7-8 with 2 attached to 4; the extra node hangs off 8.
   EXPECT_EQ(affine_coxeter_diagram(make_root_system(Family::E, 8)),
-            (std::vector<DiagramEdge>{{0, 8, 3}, {1, 3, 3}, {2, 4, 3}, {3, 4, 3}, {4, 5, 3}, {5, 6, 3}, {6, 7, 3}, {7, 8, 3}}));
+            (std::vector<DiagramEdge>{
+                {0, 8, 3}, {1, 3, 3}, {2, 4, 3}, {3, 4, 3}, {4, 5, 3}, {5, 6, 3}, {6, 7, 3}, {7, 8, 3}}));
   for (auto [f, d] : all_types_up_to(8)) {
     const RootSystem rs = make_root_system(f, d);
     EXPECT_EQ(coxeter_diagram(rs).size(), static_cast<std::size_t>(d - 1)) << name(f, d);  // a tree
@@ -301,16 +337,17 @@ TEST(RootSystem, CartanMatricesAndDiagrams) {
       EXPECT_EQ(rs.cartan(i, i), 2);
       for (int j = 0; j < d; ++j)
         if (i != j) {
-          EXPECT_TRUE(rs.cartan(i, j) <= 0 && rs.cartan(i, j) >= -3 && (rs.cartan(i, j) == 0) == (rs.cartan(j, i) == 0));
+          EXPECT_TRUE(rs.cartan(i, j) <= 0 && rs.cartan(i, j) >= -3 &&
+                      (rs.cartan(i, j) == 0) == (rs.cartan(j, i) == 0));
         }
     }
   }
 }
 
 TEST(RootSystem, UnsupportedPairsThrowInputError) {
-  const std::vector<std::pair<Family, int>> bad{{Family::A, 0},  {Family::B, 1}, {Family::C, 1}, {Family::D, 3},
-                                                {Family::E, 5},  {Family::E, 9}, {Family::F, 3}, {Family::G, 3},
-                                                {Family::A, 65}};
+  const std::vector<std::pair<Family, int>> bad{{Family::A, 0}, {Family::B, 1}, {Family::C, 1},
+                                                {Family::D, 3}, {Family::E, 5}, {Family::E, 9},
+                                                {Family::F, 3}, {Family::G, 3}, {Family::A, 65}};
   for (auto [f, d] : bad) {
     EXPECT_THROW(make_root_system(f, d), InputError) << name(f, d);
     EXPECT_THROW(fundamental_alcove(f, d), InputError) << name(f, d);
@@ -367,11 +404,16 @@ TEST(Alcove, VertexStarsHaveOrderOfTheStabiliserAndCoverABall) {
     double expected;
   };
   // Star of v_0: |W|. Star of v_4 in Ẽ8: W(A1×A2×A5) = 2·6·720; of v_4 in Ẽ6: W(A2×A2×A2) = 216.
-  const std::vector<Case> cases{{Family::A, 2, 0, weyl_group_order(Family::A, 2)}, {Family::A, 4, 0, weyl_group_order(Family::A, 4)},
-                                {Family::B, 3, 0, weyl_group_order(Family::B, 3)}, {Family::C, 2, 0, weyl_group_order(Family::C, 2)},
-                                {Family::C, 3, 0, weyl_group_order(Family::C, 3)}, {Family::D, 4, 0, weyl_group_order(Family::D, 4)},
-                                {Family::F, 4, 0, weyl_group_order(Family::F, 4)}, {Family::G, 2, 0, weyl_group_order(Family::G, 2)},
-                                {Family::E, 6, 4, 216},                            {Family::E, 8, 4, 8640}};
+  const std::vector<Case> cases{{Family::A, 2, 0, weyl_group_order(Family::A, 2)},
+                                {Family::A, 4, 0, weyl_group_order(Family::A, 4)},
+                                {Family::B, 3, 0, weyl_group_order(Family::B, 3)},
+                                {Family::C, 2, 0, weyl_group_order(Family::C, 2)},
+                                {Family::C, 3, 0, weyl_group_order(Family::C, 3)},
+                                {Family::D, 4, 0, weyl_group_order(Family::D, 4)},
+                                {Family::F, 4, 0, weyl_group_order(Family::F, 4)},
+                                {Family::G, 2, 0, weyl_group_order(Family::G, 2)},
+                                {Family::E, 6, 4, 216},
+                                {Family::E, 8, 4, 8640}};
   std::mt19937_64 rng(5);
   std::normal_distribution<double> normal;
   for (const Case& k : cases) {
@@ -450,7 +492,8 @@ TEST(Measures, AtildeClosedFormsUpToDimension50) {
     for (int i = 0; i <= d; ++i)
       for (int j = i + 1; j <= d; ++j) {
         const long double q = j - i;
-        expect_rel((a.vertices.row(i) - a.vertices.row(j)).squaredNorm(), q * (D + 1 - q) / (D + 1), 1e-12, n + " edge");
+        expect_rel((a.vertices.row(i) - a.vertices.row(j)).squaredNorm(), q * (D + 1 - q) / (D + 1), 1e-12,
+                   n + " edge");
       }
     const long double L2 = std::floor((D + 1) / 2) * std::ceil((D + 1) / 2) / (D + 1);
     const long double R2 = D * (D + 2) / (12 * (D + 1));
@@ -467,7 +510,8 @@ TEST(Measures, AtildeClosedFormsUpToDimension50) {
     // Protection (thesis §2.4): δ = √((d²+2d+24)/(12(d+1))) − √((d²+2d)/(12(d+1))).
     const DelaunayResult del = delaunay_by_circumcentre(m);
     ASSERT_EQ(del.status, DelaunayStatus::yes) << n;
-    const long double delta = std::sqrt((D * D + 2 * D + 24) / (12 * (D + 1))) - std::sqrt((D * D + 2 * D) / (12 * (D + 1)));
+    const long double delta =
+        std::sqrt((D * D + 2 * D + 24) / (12 * (D + 1))) - std::sqrt((D * D + 2 * D) / (12 * (D + 1)));
     expect_rel(*del.protection, delta / std::sqrt(L2), 1e-12, n + " δ/L");
     if (d <= 12) {  // the direct check on the depth-2 neighbourhood gives the same protection
       const DelaunayResult direct = delaunay_direct(generate_by_depth(a, 2));
@@ -560,7 +604,9 @@ TEST(Exact, RationalComputationAgreesWithDoublesForEveryType) {
     // Delaunay status, decided exactly by the signs of the barycentric coordinates.
     int lowest = 1;
     for (const Frac& x : e.barycentric) lowest = std::min(lowest, x.sign());
-    const DelaunayStatus exact = lowest > 0 ? DelaunayStatus::yes : lowest == 0 ? DelaunayStatus::degenerate : DelaunayStatus::no;
+    const DelaunayStatus exact = lowest > 0    ? DelaunayStatus::yes
+                                 : lowest == 0 ? DelaunayStatus::degenerate
+                                               : DelaunayStatus::no;
     EXPECT_EQ(q.delaunay.status, exact) << n;
     if (exact == DelaunayStatus::yes) {
       long double delta = 1e300L;
@@ -600,9 +646,9 @@ TEST(Delaunay, CriterionAndDirectCheckAgreeForEveryTypeUpToDimension8) {
         EXPECT_NEAR(*deeper.protection, *q.delaunay.protection, 1e-12) << n;
       }
     }
-    const DelaunayStatus expected = f == Family::A ? DelaunayStatus::yes
+    const DelaunayStatus expected = f == Family::A                                         ? DelaunayStatus::yes
                                     : (f == Family::C || f == Family::F || f == Family::G) ? DelaunayStatus::degenerate
-                                                                                          : DelaunayStatus::no;
+                                                                                           : DelaunayStatus::no;
     EXPECT_EQ(q.delaunay.status, expected) << n;
     (q.delaunay.status == DelaunayStatus::no ? not_delaunay : delaunay)++;
   }

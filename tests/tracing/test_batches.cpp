@@ -59,11 +59,17 @@ struct Case {
 TEST(Batches, SameTraceSameEvaluations) {
   const Eigen::VectorXd b3 = Eigen::Vector3d(0.0123, 0.0456, 0.0789);
   std::vector<Case> cases;
-  cases.push_back({"S2 in R3", sphere(2, 3, 1.0), nullptr, Triangulation::coxeter(3).with_longest_edge(0.1).with_offset(b3), {}});
-  cases.push_back({"torus, FK, vertices on M", torus(1.0, 0.5), nullptr, Triangulation::freudenthal(3).scaled(0.125), {}});
-  cases.push_back({"S1 in R5", sphere(1, 5, 1.0), nullptr, Triangulation::coxeter(5).with_longest_edge(0.05).rotated(5), {}});
-  cases.push_back({"flat torus cut", product(sphere(1, 2, 1.0), sphere(1, 2, 1.0)), half_space_domain({1, 1, 0, 0}, 0.5),
-                   Triangulation::coxeter(4).with_longest_edge(0.3).rotated(9), {-1, 0, 1, 0}});
+  cases.push_back(
+      {"S2 in R3", sphere(2, 3, 1.0), nullptr, Triangulation::coxeter(3).with_longest_edge(0.1).with_offset(b3), {}});
+  cases.push_back(
+      {"torus, FK, vertices on M", torus(1.0, 0.5), nullptr, Triangulation::freudenthal(3).scaled(0.125), {}});
+  cases.push_back(
+      {"S1 in R5", sphere(1, 5, 1.0), nullptr, Triangulation::coxeter(5).with_longest_edge(0.05).rotated(5), {}});
+  cases.push_back({"flat torus cut",
+                   product(sphere(1, 2, 1.0), sphere(1, 2, 1.0)),
+                   half_space_domain({1, 1, 0, 0}, 0.5),
+                   Triangulation::coxeter(4).with_longest_edge(0.3).rotated(9),
+                   {-1, 0, 1, 0}});
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
     const std::vector<std::vector<double>> seeds = {c.seed.empty() ? c.f->seed() : c.seed};
@@ -100,7 +106,9 @@ TEST(Batches, SameTraceSameEvaluations) {
 
 // A failure inside a batch leaves the oracle's cache as it was and reaches the caller.
 TEST(Batches, ErrorsPropagate) {
-  auto f = make_function(3, 1, [](const double* x, double* v) { v[0] = x[2] > 0.5 ? std::nan("") : x[0] * x[0] + x[1] * x[1] + x[2] * x[2] - 1; });
+  auto f = make_function(3, 1, [](const double* x, double* v) {
+    v[0] = x[2] > 0.5 ? std::nan("") : x[0] * x[0] + x[1] * x[1] + x[2] * x[2] - 1;
+  });
   const Triangulation t = Triangulation::coxeter(3).with_longest_edge(0.1);
   for (bool batches : {false, true}) {
     ImplicitOracle oracle(t, std::make_shared<RecordingFunction>(f, batches));

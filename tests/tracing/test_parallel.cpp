@@ -54,10 +54,17 @@ TEST(ParallelTracing, IdenticalForEveryThreadCount) {
       {"S2 in R3", sphere(2, 3, 1.0), nullptr, Triangulation::coxeter(3).with_longest_edge(0.08), {}},
       {"torus, FK, vertices on M", torus(1.0, 0.5), nullptr, Triangulation::freudenthal(3).scaled(0.125), {}},
       {"S2 in R4", sphere(2, 4, 1.0), nullptr, Triangulation::coxeter(4).with_longest_edge(0.25).rotated(3), {}},
-      {"flat torus cut", product(sphere(1, 2, 1.0), sphere(1, 2, 1.0)), half_space_domain({1, 1, 0, 0}, 0.5),
-       Triangulation::coxeter(4).with_longest_edge(0.3), {-1, 0, 1, 0}},
+      {"flat torus cut",
+       product(sphere(1, 2, 1.0), sphere(1, 2, 1.0)),
+       half_space_domain({1, 1, 0, 0}, 0.5),
+       Triangulation::coxeter(4).with_longest_edge(0.3),
+       {-1, 0, 1, 0}},
       {"limit", moment_curve(4), nullptr, Triangulation::coxeter(4).with_longest_edge(0.2), {}, 3000},
-      {"box", sphere(2, 3, 1.0), box_domain(Box{{-2, -2, -0.3}, {2, 2, 2}}), Triangulation::coxeter(3).with_longest_edge(0.1), {}},
+      {"box",
+       sphere(2, 3, 1.0),
+       box_domain(Box{{-2, -2, -0.3}, {2, 2, 2}}),
+       Triangulation::coxeter(3).with_longest_edge(0.1),
+       {}},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
@@ -124,10 +131,11 @@ TEST(ParallelTracing, IdenticalWhenTheWalkGraphIsNotSymmetric) {
     for (int threads : {2, 3, 4}) {
       TraceOptions options;
       options.threads = threads;
-      const TraceResult parallel =
-          trace_manifold(t, [&, d = d, k = k, radius = radius] { return std::make_unique<ScatteredOracle>(d, k, radius); },
-                         seeds, options);  // (bindings copied: clang 14 cannot capture them)
-      expect_identical(sequential, parallel, std::to_string(d) + "/" + std::to_string(k) + ", " + std::to_string(threads) + " threads");
+      const TraceResult parallel = trace_manifold(
+          t, [&, d = d, k = k, radius = radius] { return std::make_unique<ScatteredOracle>(d, k, radius); }, seeds,
+          options);  // (bindings copied: clang 14 cannot capture them)
+      expect_identical(sequential, parallel,
+                       std::to_string(d) + "/" + std::to_string(k) + ", " + std::to_string(threads) + " threads");
     }
   }
 }
@@ -137,7 +145,9 @@ TEST(ParallelTracing, IdenticalWhenTheWalkGraphIsNotSymmetric) {
 // values.
 TEST(ParallelSharedValues, EveryVertexEvaluatedOnceWhileTheTableGrows) {
   constexpr int kVertices = 40'000, kThreads = 4;
-  const auto vertex = [](int i, std::int32_t* v) { v[0] = i % 37 - 18, v[1] = i / 37 % 41 - 20, v[2] = i / (37 * 41) - 13; };
+  const auto vertex = [](int i, std::int32_t* v) {
+    v[0] = i % 37 - 18, v[1] = i / 37 % 41 - 20, v[2] = i / (37 * 41) - 13;
+  };
   const auto value = [](const std::int32_t* v, int j) { return v[0] * 1e6 + v[1] * 1e3 + v[2] + 0.5 * j; };
   SharedVertexValues shared(3, 2);
   std::vector<std::atomic<int>> evaluations(kVertices);
@@ -152,10 +162,11 @@ TEST(ParallelSharedValues, EveryVertexEvaluatedOnceWhileTheTableGrows) {
         std::int32_t v[3];
         vertex(i, v);
         double out[2];
-        evaluated[w] += shared.get(v, hash_words(reinterpret_cast<const std::uint32_t*>(v), 3), out, [&](double* stored) {
-          evaluations[i].fetch_add(1);
-          stored[0] = value(v, 0), stored[1] = value(v, 1);
-        });
+        evaluated[w] +=
+            shared.get(v, hash_words(reinterpret_cast<const std::uint32_t*>(v), 3), out, [&](double* stored) {
+              evaluations[i].fetch_add(1);
+              stored[0] = value(v, 0), stored[1] = value(v, 1);
+            });
         wrong[w] += out[0] != value(v, 0) || out[1] != value(v, 1);
       }
     });
@@ -170,18 +181,22 @@ TEST(ParallelSharedValues, EveryVertexEvaluatedOnceWhileTheTableGrows) {
 }
 
 TEST(ParallelTracing, ErrorsFromWorkersReachTheCaller) {
-  FunctionPtr bad = make_function(3, 1, [](const double* x, double* v) {
-    v[0] = x[0] > 0.7 ? NAN : x[0] * x[0] + x[1] * x[1] + x[2] * x[2] - 1;
-  }, std::vector<double>{0, 0, 1});
+  FunctionPtr bad = make_function(
+      3, 1, [](const double* x, double* v) { v[0] = x[0] > 0.7 ? NAN : x[0] * x[0] + x[1] * x[1] + x[2] * x[2] - 1; },
+      std::vector<double>{0, 0, 1});
   const Triangulation t = Triangulation::coxeter(3).with_longest_edge(0.1);
   TraceOptions options;
   options.threads = 2;
-  EXPECT_THROW(trace_manifold(t, [&] { return std::make_unique<ImplicitOracle>(t, bad); }, {bad->seed()}, options),
+  EXPECT_THROW(trace_manifold(
+                   t, [&] { return std::make_unique<ImplicitOracle>(t, bad); }, {bad->seed()}, options),
                EvaluationError);
   const auto shared = ImplicitOracle::make_shared_values(t, bad);
-  EXPECT_THROW(trace_manifold(t, [&] { return std::make_unique<ImplicitOracle>(t, bad, nullptr, shared); }, {bad->seed()}, options),
-               EvaluationError);
-  EXPECT_THROW(ImplicitOracle(t, bad, half_space_domain({1, 0, 0}, 0), shared), InputError);  // 2 values per vertex, not 1
+  EXPECT_THROW(
+      trace_manifold(
+          t, [&] { return std::make_unique<ImplicitOracle>(t, bad, nullptr, shared); }, {bad->seed()}, options),
+      EvaluationError);
+  EXPECT_THROW(ImplicitOracle(t, bad, half_space_domain({1, 0, 0}, 0), shared),
+               InputError);  // 2 values per vertex, not 1
 }
 
 TEST(ParallelCellComplex, IdenticalForEveryThreadCount) {
@@ -194,8 +209,11 @@ TEST(ParallelCellComplex, IdenticalForEveryThreadCount) {
   const std::vector<Complex> cases = {
       {"S2 in R3", sphere(2, 3, 1.0), nullptr, Triangulation::coxeter(3).with_longest_edge(0.05), {}},
       {"S3 in R5", sphere(3, 5, 1.0), nullptr, Triangulation::coxeter(5).with_longest_edge(0.5).rotated(1), {}},
-      {"flat torus cut", product(sphere(1, 2, 1.0), sphere(1, 2, 1.0)), half_space_domain({1, 1, 0, 0}, 0.5),
-       Triangulation::coxeter(4).with_longest_edge(0.25), {-1, 0, 1, 0}},
+      {"flat torus cut",
+       product(sphere(1, 2, 1.0), sphere(1, 2, 1.0)),
+       half_space_domain({1, 1, 0, 0}, 0.5),
+       Triangulation::coxeter(4).with_longest_edge(0.25),
+       {-1, 0, 1, 0}},
   };
   auto same_level = [](const CellLevel& a, const CellLevel& b) {
     if (a.size() != b.size() || a.facet_offsets != b.facet_offsets || a.facet_ids != b.facet_ids ||
@@ -234,8 +252,10 @@ TEST(ParallelCellComplex, IdenticalForEveryThreadCount) {
       const CellComplex many = build_cell_complex(TraceResult(traced), threads);
       ASSERT_EQ(one.interior.size(), many.interior.size());
       ASSERT_EQ(one.boundary.size(), many.boundary.size());
-      for (std::size_t j = 0; j < one.interior.size(); ++j) EXPECT_TRUE(same_level(one.interior[j], many.interior[j])) << j;
-      for (std::size_t j = 0; j < one.boundary.size(); ++j) EXPECT_TRUE(same_level(one.boundary[j], many.boundary[j])) << j;
+      for (std::size_t j = 0; j < one.interior.size(); ++j)
+        EXPECT_TRUE(same_level(one.interior[j], many.interior[j])) << j;
+      for (std::size_t j = 0; j < one.boundary.size(); ++j)
+        EXPECT_TRUE(same_level(one.boundary[j], many.boundary[j])) << j;
       EXPECT_EQ(one.vertices, many.vertices);
       EXPECT_EQ(one.boundary_vertices, many.boundary_vertices);
     }

@@ -42,15 +42,36 @@ struct Case {
 TEST(Pivoting, GuessesOnlySaveTime) {
   const Eigen::VectorXd b3 = Eigen::Vector3d(0.0123, 0.0456, 0.0789);
   std::vector<Case> cases;
-  cases.push_back({"S2 in R3", sphere(2, 3, 1.0), nullptr, Triangulation::coxeter(3).with_longest_edge(0.1).with_offset(b3), true, {}});
-  cases.push_back({"torus, FK, vertices on M", torus(1.0, 0.5), nullptr, Triangulation::freudenthal(3).scaled(0.125), false, {}});
-  cases.push_back({"S1 in R5", sphere(1, 5, 1.0), nullptr, Triangulation::coxeter(5).with_longest_edge(0.05).rotated(5), true, {}});
-  cases.push_back({"S3 in R6", sphere(3, 6, 1.0), nullptr, Triangulation::coxeter(6).with_longest_edge(0.6).rotated(2), true, {}});
-  cases.push_back({"S2 in R4, FK, vertices on M", sphere(2, 4, 1.0), nullptr, Triangulation::freudenthal(4).scaled(0.25), false, {}});
-  cases.push_back({"flat torus cut", product(sphere(1, 2, 1.0), sphere(1, 2, 1.0)), half_space_domain({1, 1, 0, 0}, 0.5),
-                   Triangulation::coxeter(4).with_longest_edge(0.3).rotated(9), true, {-1, 0, 1, 0}});
-  cases.push_back({"moment curve in a ball", moment_curve(5), ball_domain(std::vector<double>(5, 0.0), 1.2),
-                   Triangulation::coxeter(5).with_longest_edge(0.05).rotated(4), true, {}});
+  cases.push_back({"S2 in R3",
+                   sphere(2, 3, 1.0),
+                   nullptr,
+                   Triangulation::coxeter(3).with_longest_edge(0.1).with_offset(b3),
+                   true,
+                   {}});
+  cases.push_back(
+      {"torus, FK, vertices on M", torus(1.0, 0.5), nullptr, Triangulation::freudenthal(3).scaled(0.125), false, {}});
+  cases.push_back(
+      {"S1 in R5", sphere(1, 5, 1.0), nullptr, Triangulation::coxeter(5).with_longest_edge(0.05).rotated(5), true, {}});
+  cases.push_back(
+      {"S3 in R6", sphere(3, 6, 1.0), nullptr, Triangulation::coxeter(6).with_longest_edge(0.6).rotated(2), true, {}});
+  cases.push_back({"S2 in R4, FK, vertices on M",
+                   sphere(2, 4, 1.0),
+                   nullptr,
+                   Triangulation::freudenthal(4).scaled(0.25),
+                   false,
+                   {}});
+  cases.push_back({"flat torus cut",
+                   product(sphere(1, 2, 1.0), sphere(1, 2, 1.0)),
+                   half_space_domain({1, 1, 0, 0}, 0.5),
+                   Triangulation::coxeter(4).with_longest_edge(0.3).rotated(9),
+                   true,
+                   {-1, 0, 1, 0}});
+  cases.push_back({"moment curve in a ball",
+                   moment_curve(5),
+                   ball_domain(std::vector<double>(5, 0.0), 1.2),
+                   Triangulation::coxeter(5).with_longest_edge(0.05).rotated(4),
+                   true,
+                   {}});
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
     const std::vector<std::vector<double>> seeds = {c.seed.empty() ? c.f->seed() : c.seed};
@@ -71,7 +92,8 @@ TEST(Pivoting, GuessesOnlySaveTime) {
     // With a random offset the guesses are right but for rare near-ties: besides the search around
     // the seed, each oracle call is one discovered simplex (of S, or outside the domain).
     if (c.generic) {
-      EXPECT_LE(pivoting.oracle_calls, pivoting.simplices.size() * 101 / 100 + 2 * pivoting.boundary_simplices.size() + 500)
+      EXPECT_LE(pivoting.oracle_calls,
+                pivoting.simplices.size() * 101 / 100 + 2 * pivoting.boundary_simplices.size() + 500)
           << pivoting.oracle_calls << " calls for " << pivoting.simplices.size() << " simplices";
     }
   }

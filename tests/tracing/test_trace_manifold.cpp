@@ -62,38 +62,62 @@ std::vector<Case> catalogue() {
       name += std::to_string(m);
       name += " in R";
       name += std::to_string(d);
-      cases.push_back({name, sphere(m, d, 1.0), nullptr,
-                       cox(d, edge).with_offset(offset(d, 0.01)), m % 2 ? 0 : 2, betti});
+      cases.push_back(
+          {name, sphere(m, d, 1.0), nullptr, cox(d, edge).with_offset(offset(d, 0.01)), m % 2 ? 0 : 2, betti});
     }
   cases.push_back({"torus", torus(1.0, 0.4), nullptr, cox(3, 0.15), 0, {1, 2, 1}});
   cases.push_back({"flat torus", product(sphere(1, 2, 1.0), sphere(1, 2, 1.0)), nullptr, cox(4, 0.5), 0, {1, 2, 1}});
-  cases.push_back({"S1 x S2 in R5", product(sphere(1, 2, 1.0), sphere(2, 3, 1.0)), nullptr, cox(5, 0.6), 0, {1, 1, 1, 1}});
-  cases.push_back({"S2 rotated in R4", linear_map(embed(sphere(2, 3, 1.0), 4), Triangulation::coxeter(4).rotated(9).matrix()),
-                   nullptr, cox(4, 0.5), 2, {1, 0, 1}});
+  cases.push_back(
+      {"S1 x S2 in R5", product(sphere(1, 2, 1.0), sphere(2, 3, 1.0)), nullptr, cox(5, 0.6), 0, {1, 1, 1, 1}});
+  cases.push_back({"S2 rotated in R4",
+                   linear_map(embed(sphere(2, 3, 1.0), 4), Triangulation::coxeter(4).rotated(9).matrix()),
+                   nullptr,
+                   cox(4, 0.5),
+                   2,
+                   {1, 0, 1}});
   cases.push_back({"chair", chair(), nullptr, cox(3, 0.1), -4, {1, 6, 1}});
   // With boundary: a cap of S², a cut flat torus (annulus × circle halves), a disk in R⁴, a curve.
   cases.push_back({"spherical cap", sphere(2, 3, 1.0), ball_domain({1, 0, 0}, 0.6), cox(3, 0.2), 1, {1, 0, 0}});
-  cases.push_back({"flat torus cut", product(sphere(1, 2, 1.0), sphere(1, 2, 1.0)), half_space_domain({1, 0, 0, 0}, 0.5),
-                   cox(4, 0.5), 0, {1, 1, 0}, {{-1, 0, 1, 0}}});
-  cases.push_back({"disk in R4", translate(affine_plane(Eigen::MatrixXd::Identity(4, 4).rightCols(2), Eigen::VectorXd::Zero(4)),
-                                           Eigen::VectorXd::Constant(4, 0.01)),
-                   ball_domain({0, 0, 0, 0}, 1.0), cox(4, 0.4), 1, {1, 0, 0}});
+  cases.push_back({"flat torus cut",
+                   product(sphere(1, 2, 1.0), sphere(1, 2, 1.0)),
+                   half_space_domain({1, 0, 0, 0}, 0.5),
+                   cox(4, 0.5),
+                   0,
+                   {1, 1, 0},
+                   {{-1, 0, 1, 0}}});
+  cases.push_back({"disk in R4",
+                   translate(affine_plane(Eigen::MatrixXd::Identity(4, 4).rightCols(2), Eigen::VectorXd::Zero(4)),
+                             Eigen::VectorXd::Constant(4, 0.01)),
+                   ball_domain({0, 0, 0, 0}, 1.0),
+                   cox(4, 0.4),
+                   1,
+                   {1, 0, 0}});
   cases.push_back({"moment curve", moment_curve(4), ball_domain({0, 0, 0, 0}, 1.5), cox(4, 0.1), 1, {1, 0}});
   // Lattice vertices exactly on M, no offset: FK unit cubes and the unit sphere through (±1,0,0)…,
   // and Ã_2 circles through lattice vertices.
-  cases.push_back({"sphere through FK vertices", sphere(2, 3, 1.0), nullptr, Triangulation::freudenthal(3), 2, {1, 0, 1}});
-  cases.push_back({"sphere through FK vertices, fine", sphere(2, 3, 2.0), nullptr, Triangulation::freudenthal(3), 2, {1, 0, 1}});
+  cases.push_back(
+      {"sphere through FK vertices", sphere(2, 3, 1.0), nullptr, Triangulation::freudenthal(3), 2, {1, 0, 1}});
+  cases.push_back(
+      {"sphere through FK vertices, fine", sphere(2, 3, 2.0), nullptr, Triangulation::freudenthal(3), 2, {1, 0, 1}});
   {
     const Triangulation t = Triangulation::coxeter(2);
     std::int32_t v[2] = {1, 0};
     double x[2];
     t.cartesian(v, x);
     cases.push_back({"circle through Coxeter vertices", sphere(1, 2, std::hypot(x[0], x[1])), nullptr, t, 0, {1, 1}});
-    cases.push_back({"S2 through Coxeter vertices", sphere(2, 3, 2 * Triangulation::coxeter(3).longest_edge()), nullptr,
-                     Triangulation::coxeter(3), 2, {1, 0, 1}});
+    cases.push_back({"S2 through Coxeter vertices",
+                     sphere(2, 3, 2 * Triangulation::coxeter(3).longest_edge()),
+                     nullptr,
+                     Triangulation::coxeter(3),
+                     2,
+                     {1, 0, 1}});
   }
-  cases.push_back({"plane through vertices in R3", affine_plane(Eigen::MatrixXd::Identity(3, 1), Eigen::VectorXd::Zero(3)),
-                   ball_domain({0, 0, 0}, 2.0), Triangulation::freudenthal(3).scaled(0.5), 1, {1, 0, 0}});
+  cases.push_back({"plane through vertices in R3",
+                   affine_plane(Eigen::MatrixXd::Identity(3, 1), Eigen::VectorXd::Zero(3)),
+                   ball_domain({0, 0, 0}, 2.0),
+                   Triangulation::freudenthal(3).scaled(0.5),
+                   1,
+                   {1, 0, 0}});
   return cases;
 }
 
@@ -160,11 +184,14 @@ TEST(TraceManifold, OneEvaluationPerLatticeVertex) {
   auto seen = std::make_shared<std::map<std::vector<double>, int>>();
   auto mutex = std::make_shared<std::mutex>();
   FunctionPtr s = sphere(2, 4, 1.0);
-  FunctionPtr counted = make_function(4, 2, [s, seen, mutex](const double* x, double* v) {
-    std::lock_guard<std::mutex> lock(*mutex);
-    ++(*seen)[std::vector<double>(x, x + 4)];
-    s->evaluate(x, v);
-  }, s->seed());
+  FunctionPtr counted = make_function(
+      4, 2,
+      [s, seen, mutex](const double* x, double* v) {
+        std::lock_guard<std::mutex> lock(*mutex);
+        ++(*seen)[std::vector<double>(x, x + 4)];
+        s->evaluate(x, v);
+      },
+      s->seed());
   const Triangulation t = Triangulation::coxeter(4).with_longest_edge(0.4).with_offset(offset(4, 0.01));
   ImplicitOracle oracle(t, counted);
   const TraceResult r = trace_manifold(t, oracle, {counted->seed()});
@@ -282,8 +309,9 @@ TEST(TraceManifold, BadInputGivesClearErrors) {
     EXPECT_THROW(trace_manifold(t3, oracle, {}), SeedError);
   }
   {  // NaN from F names the point
-    FunctionPtr bad = make_function(3, 1, [](const double* x, double* v) { v[0] = x[0] > 0.5 ? NAN : x[0] * x[0] + x[1] * x[1] + x[2] * x[2] - 1; },
-                                    std::vector<double>{0, 0, 1});
+    FunctionPtr bad = make_function(
+        3, 1, [](const double* x, double* v) { v[0] = x[0] > 0.5 ? NAN : x[0] * x[0] + x[1] * x[1] + x[2] * x[2] - 1; },
+        std::vector<double>{0, 0, 1});
     ImplicitOracle oracle(t3, bad);
     try {
       trace_manifold(t3, oracle, {bad->seed()});
@@ -323,7 +351,8 @@ TEST(Seeds, ProjectionAndAutomaticSeedingFindEveryComponent) {
   const TopologyReport topo = analyze_topology(build_cell_complex(std::move(r)));
   EXPECT_EQ(topo.betti, (std::vector<std::size_t>{2, 0, 2}));
   EXPECT_EQ(topo.euler_characteristic, 4);
-  EXPECT_FALSE(project_onto_manifold(*make_function(2, 1, [](const double* x, double* f) { f[0] = x[0] * x[0] + x[1] * x[1] + 1; }),
-                                     {0.5, 0.5})
-                   .has_value());
+  EXPECT_FALSE(
+      project_onto_manifold(
+          *make_function(2, 1, [](const double* x, double* f) { f[0] = x[0] * x[0] + x[1] * x[1] + 1; }), {0.5, 0.5})
+          .has_value());
 }

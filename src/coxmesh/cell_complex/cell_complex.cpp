@@ -64,7 +64,8 @@ CellComplex build_cell_complex(TraceResult&& trace, int threads) {
   }
   for (int j = 1; j <= m; ++j) {
     cc.interior.push_back(cells::next_level_pipelined(cc.interior[j - 1], d, k + j, pool));
-    if (has_boundary && j <= m - 1) cc.boundary.push_back(cells::next_level_pipelined(cc.boundary[j - 1], d, k + 1 + j, pool));
+    if (has_boundary && j <= m - 1)
+      cc.boundary.push_back(cells::next_level_pipelined(cc.boundary[j - 1], d, k + 1 + j, pool));
   }
   if (!has_boundary) cc.boundary.resize(std::max(m, 0));  // empty levels, uniform shape
   if (has_boundary)
@@ -74,7 +75,8 @@ CellComplex build_cell_complex(TraceResult&& trace, int threads) {
       const std::size_t n = level.size(), parts = static_cast<std::size_t>(pool.size());
       pool.run(parts, [&](std::size_t p, int) {
         for (std::size_t c = n * p / parts; c < n * (p + 1) / parts; ++c)
-          level.boundary_facet[c] = cc.boundary[j - 1].simplices.find(level.simplices.key(static_cast<std::uint32_t>(c)));
+          level.boundary_facet[c] =
+              cc.boundary[j - 1].simplices.find(level.simplices.key(static_cast<std::uint32_t>(c)));
       });
     }
   for (auto& l : cc.boundary)

@@ -14,9 +14,10 @@ namespace coxmesh {
 struct CellLevel {
   static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
   // (arrays that the construction writes in full, by several threads: not zeroed first)
-  PackedKeyIndex simplices{1};                              ///< ambient simplex of each cell; id = cell id
-  UninitializedHugeVector<std::uint32_t> facet_offsets{0};  ///< CSR: facets of c are facet_ids[offsets[c] .. offsets[c+1])
-  UninitializedHugeVector<std::uint32_t> facet_ids;         ///< cells of dimension j − 1 of the same kind
+  PackedKeyIndex simplices{1};  ///< ambient simplex of each cell; id = cell id
+  UninitializedHugeVector<std::uint32_t> facet_offsets{
+      0};                                            ///< CSR: facets of c are facet_ids[offsets[c] .. offsets[c+1])
+  UninitializedHugeVector<std::uint32_t> facet_ids;  ///< cells of dimension j − 1 of the same kind
   /// Interior cells (j ≥ 1) with a domain: the boundary cell of dimension j − 1 on the same
   /// simplex (it closes the cut polytope), or kNone. Empty without a domain.
   UninitializedHugeVector<std::uint32_t> boundary_facet;

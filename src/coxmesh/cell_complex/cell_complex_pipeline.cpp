@@ -41,7 +41,7 @@ void set_facets(CellLevel& level, std::span<const std::uint64_t> incidences, Wor
     std::uint64_t base = 0;
     for (std::size_t q = 0; q < p; ++q) base += totals[q];
     std::vector<std::uint32_t> next(lo(p + 1) - lo(p));  // where the next facet of each cell goes
-    for (std::uint64_t c = lo(p); c < lo(p + 1); ++c)  // (a cell starts where the one before ends)
+    for (std::uint64_t c = lo(p); c < lo(p + 1); ++c)    // (a cell starts where the one before ends)
       next[c - lo(p)] = static_cast<std::uint32_t>(c == lo(p) ? base : ends[c - 1] + base);
     for (std::uint64_t c = lo(p); c < lo(p + 1); ++c) ends[c] += static_cast<std::uint32_t>(base);
     for_own_incidences(p, [&](std::uint64_t c, std::uint32_t facet) { level.facet_ids[next[c - lo(p)]++] = facet; });
@@ -78,7 +78,8 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
   const std::int64_t batches = (prev.size() + batch_cells - 1) / batch_cells;
   const auto chunks_of = [&](std::int64_t batch) -> std::size_t {
     if (batch < 0 || batch >= batches) return 0;
-    return (std::min<std::uint64_t>(prev.size(), (batch + 1) * batch_cells) - batch * batch_cells + kChunk - 1) / kChunk;
+    return (std::min<std::uint64_t>(prev.size(), (batch + 1) * batch_cells) - batch * batch_cells + kChunk - 1) /
+           kChunk;
   };
   const auto enumerate = [&](std::int64_t batch, std::size_t t) {
     Chunk& out = buffers[batch % 3][t];
@@ -110,7 +111,8 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
   const auto write_out = [&](std::int64_t batch, std::size_t t) {
     const Chunk& in = buffers[batch % 3][t];
     for (std::size_t r = 0; r < in.ids.size(); ++r)
-      incidences[in.offset + r] = (static_cast<std::uint64_t>(in.ids[r] & ~PackedKeyIndex::kNewBit) << 32) | in.facets[r];
+      incidences[in.offset + r] =
+          (static_cast<std::uint64_t>(in.ids[r] & ~PackedKeyIndex::kNewBit) << 32) | in.facets[r];
   };
   for (std::int64_t round = 0; round <= batches + 1; ++round) {
     const std::int64_t numbered = round - 1, written = round - 2;

@@ -1,11 +1,11 @@
 #include "coxmesh/cell_complex/topology.h"
 
-#include <algorithm>
+#include <phat/algorithms/twist_reduction.h>
 #include <phat/boundary_matrix.h>
 #include <phat/compute_persistence_pairs.h>
 #include <phat/persistence_pairs.h>
 #include <phat/representations/full_pivot_column.h>
-#include <phat/algorithms/twist_reduction.h>
+#include <algorithm>
 
 namespace coxmesh {
 
@@ -72,7 +72,8 @@ std::string check_closed(const CellComplex& cc) {
         for (std::size_t i = 0; i < ridges.size();) {
           std::size_t e = i;
           while (e < ridges.size() && ridges[e] == ridges[i]) ++e;
-          if ((e - i) % 2) return "a " + std::to_string(j) + "-cell is not closed (a face of its boundary is not shared)";
+          if ((e - i) % 2)
+            return "a " + std::to_string(j) + "-cell is not closed (a face of its boundary is not shared)";
           i = e;
         }
       }
@@ -167,9 +168,12 @@ TopologyReport analyze_topology(const CellComplex& cc, bool compute_betti) {
     r.boundary_cells.push_back(n);
     r.euler_characteristic += (j % 2 ? -1LL : 1LL) * static_cast<long long>(n);
   }
-  if (cc.interior[0].size() == 0) r.manifold_problem = "the complex is empty";
-  else if (const std::string open = check_closed(cc); !open.empty()) r.manifold_problem = "not a closed complex: " + open;
-  else r.closed = true, r.manifold_problem = check_manifold(cc);
+  if (cc.interior[0].size() == 0)
+    r.manifold_problem = "the complex is empty";
+  else if (const std::string open = check_closed(cc); !open.empty())
+    r.manifold_problem = "not a closed complex: " + open;
+  else
+    r.closed = true, r.manifold_problem = check_manifold(cc);
   r.is_manifold = r.manifold_problem.empty();
   if (compute_betti && r.closed) r.betti = betti_numbers(cc);
   return r;

@@ -15,7 +15,7 @@ struct TopologyReport {
   std::vector<std::size_t> betti;           ///< Z/2 Betti numbers of the whole complex, 0..m; empty unless closed
   bool closed = false;                      ///< every cell's boundary is a cycle (edge cells have two ends)
   bool is_manifold = false;
-  std::string manifold_problem;             ///< the first violation found (empty if a manifold)
+  std::string manifold_problem;  ///< the first violation found (empty if a manifold)
 };
 
 /// Euler characteristic and counts are O(cells); Betti numbers by Z/2 column reduction (PHAT,

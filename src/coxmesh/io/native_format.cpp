@@ -24,7 +24,9 @@ void write_array(std::ostream& os, const T* data, std::size_t n) {
 }
 
 nlohmann::json level_json(const CellLevel& level) {
-  return {{"cells", level.size()}, {"facet_entries", level.facet_ids.size()}, {"boundary_facet", !level.boundary_facet.empty()}};
+  return {{"cells", level.size()},
+          {"facet_entries", level.facet_ids.size()},
+          {"boundary_facet", !level.boundary_facet.empty()}};
 }
 
 struct Reader {
@@ -83,12 +85,9 @@ void write_native(std::ostream& os, const CellComplex& cc, const NativeInfo& inf
   for (const CellLevel& l : cc.boundary) h["boundary"].push_back(level_json(l));
   h["vertices"] = cc.vertices.size() / std::max(d, 1);
   h["boundary_vertices"] = cc.boundary_vertices.size() / std::max(d, 1);
-  h["info"] = {{"source", info.source},
-               {"complete", info.complete},
-               {"message", info.message},
-               {"matrix", info.matrix},
-               {"offset", info.offset},
-               {"function_evaluations", info.function_evaluations}};
+  h["info"] = {{"source", info.source},   {"complete", info.complete},
+               {"message", info.message}, {"matrix", info.matrix},
+               {"offset", info.offset},   {"function_evaluations", info.function_evaluations}};
   std::string line = h.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
   line.append((8 - (line.size() + 1) % 8) % 8, ' ');
   line += '\n';
@@ -128,7 +127,7 @@ NativeFile read_native(std::istream& in, const std::string& name) {
 
   NativeFile out;
   CellComplex& cc = out.cells;
-  std::uint64_t expected = 0;  // bytes of the binary part, from the header
+  std::uint64_t expected = 0;                           // bytes of the binary part, from the header
   std::vector<std::array<std::uint64_t, 2>> shapes[2];  // per level: cells, facet entries
   std::vector<bool> has_bf[2];
   int d = 0, m = 0, words = 0;
@@ -137,10 +136,12 @@ NativeFile read_native(std::istream& in, const std::string& name) {
     d = static_cast<int>(header_integer(h.at("ambient_dimension"), kMaxDimension, r, "ambient_dimension"));
     m = static_cast<int>(header_integer(h.at("manifold_dimension"), kMaxDimension, r, "manifold_dimension"));
     words = static_cast<int>(header_integer(h.at("key_words"), packed_words(kMaxDimension), r, "key_words"));
-    if (d < 1 || d > kMaxDimension || m < 0 || m >= d || words != packed_words(d)) r.fail("inconsistent dimensions in the header");
+    if (d < 1 || d > kMaxDimension || m < 0 || m >= d || words != packed_words(d))
+      r.fail("inconsistent dimensions in the header");
     const auto& levels_in = h.at("interior");
     const auto& levels_bd = h.at("boundary");
-    if (levels_in.size() != static_cast<std::size_t>(m + 1) || levels_bd.size() != static_cast<std::size_t>(m >= 1 ? m : 0))
+    if (levels_in.size() != static_cast<std::size_t>(m + 1) ||
+        levels_bd.size() != static_cast<std::size_t>(m >= 1 ? m : 0))
       r.fail("the header must list m + 1 interior and m boundary levels");
     int kind = 0;
     for (const auto* levels : {&levels_in, &levels_bd}) {
@@ -168,7 +169,8 @@ NativeFile read_native(std::istream& in, const std::string& name) {
       out.info.matrix = i.value("matrix", std::vector<double>{});
       out.info.offset = i.value("offset", std::vector<double>{});
       if (i.contains("function_evaluations"))
-        out.info.function_evaluations = header_integer(i["function_evaluations"], ~std::uint64_t{0}, r, "function_evaluations");
+        out.info.function_evaluations =
+            header_integer(i["function_evaluations"], ~std::uint64_t{0}, r, "function_evaluations");
     }
   } catch (const nlohmann::json::exception& e) {
     r.fail(std::string("bad header: ") + e.what());
@@ -176,8 +178,9 @@ NativeFile read_native(std::istream& in, const std::string& name) {
   in.seekg(0, std::ios::end);
   const std::uint64_t available = static_cast<std::uint64_t>(in.tellg() - data_start);
   if (available != expected)
-    r.fail(available < expected ? "truncated file (" + std::to_string(available) + " of " + std::to_string(expected) + " data bytes)"
-                                : "trailing bytes after the arrays");
+    r.fail(available < expected
+               ? "truncated file (" + std::to_string(available) + " of " + std::to_string(expected) + " data bytes)"
+               : "trailing bytes after the arrays");
   in.seekg(data_start);
 
   cc.ambient_dimension = d;
@@ -200,7 +203,8 @@ NativeFile read_native(std::istream& in, const std::string& name) {
       level.facet_offsets = r.array<std::uint32_t>(n + 1, "facet offsets");
       level.facet_ids = r.array<std::uint32_t>(f, "facet ids");
       if (has_bf[kind][j]) level.boundary_facet = r.array<std::uint32_t>(n, "boundary facets");
-      if (level.facet_offsets[0] != 0 || level.facet_offsets[n] != f) r.fail("facet offsets do not match the facet count");
+      if (level.facet_offsets[0] != 0 || level.facet_offsets[n] != f)
+        r.fail("facet offsets do not match the facet count");
       for (std::uint64_t c = 0; c < n; ++c)
         if (level.facet_offsets[c] > level.facet_offsets[c + 1]) r.fail("facet offsets are not increasing");
       const std::uint64_t below = j == 0 ? 0 : levels[j - 1].size();

@@ -32,10 +32,10 @@ namespace coxmesh {
 
 /// Context stored next to the cells (header key "info"); every field is optional.
 struct NativeInfo {
-  std::string source;                   ///< how the manifold was given, e.g. "function x^2+y^2+z^2-1"
-  bool complete = true;                 ///< false when a limit stopped the trace
-  std::string message;                  ///< why it stopped (empty when complete)
-  std::vector<double> matrix, offset;   ///< the ambient triangulation x = Λ·y + b: Λ (d × d, row-major) and b
+  std::string source;                      ///< how the manifold was given, e.g. "function x^2+y^2+z^2-1"
+  bool complete = true;                    ///< false when a limit stopped the trace
+  std::string message;                     ///< why it stopped (empty when complete)
+  std::vector<double> matrix, offset;      ///< the ambient triangulation x = Λ·y + b: Λ (d × d, row-major) and b
   std::uint64_t function_evaluations = 0;  ///< (oracle calls are not stored: they vary with threads)
 };
 

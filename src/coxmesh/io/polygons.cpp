@@ -94,7 +94,8 @@ Ragged polygon_cycles(const CellComplex& cc) {
             }
           }
         }
-        closed = closed && cycle.size() == edges.size() && std::all_of(used.begin(), used.end(), [](bool u) { return u; });
+        closed =
+            closed && cycle.size() == edges.size() && std::all_of(used.begin(), used.end(), [](bool u) { return u; });
       }
       if (!closed) cycle.clear();
       cycles.push(cycle);

@@ -16,8 +16,9 @@ namespace {
 std::vector<double> read_projection_file(const std::string& path, int d) {
   const NumberRows rows = read_number_rows(path, "--project file '" + path + "'");
   if (rows.rows != 3 || rows.columns != static_cast<std::size_t>(d))
-    throw InputError("--project " + path + ": expected d = " + std::to_string(d) + " numbers in each of 3 rows, found " +
-                     std::to_string(rows.rows) + " rows of " + std::to_string(rows.columns));
+    throw InputError("--project " + path + ": expected d = " + std::to_string(d) +
+                     " numbers in each of 3 rows, found " + std::to_string(rows.rows) + " rows of " +
+                     std::to_string(rows.columns));
   return rows.values;
 }
 

@@ -98,7 +98,8 @@ WrittenCounts write_ply(std::ostream& os, const CellComplex& cc, const Projectio
 }
 
 WrittenCounts write_obj(std::ostream& os, const CellComplex& cc, const Projection& projection) {
-  if (cc.manifold_dimension < 1) throw InputError("OBJ holds lines and polygons, but this is a 0-manifold: use .vtu or .cxm");
+  if (cc.manifold_dimension < 1)
+    throw InputError("OBJ holds lines and polygons, but this is a 0-manifold: use .vtu or .cxm");
   const std::vector<double> p3 = project_points(projection, vertex_coordinates(cc));
   WrittenCounts counts;
   counts.points = p3.size() / 3;

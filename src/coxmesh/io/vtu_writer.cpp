@@ -168,7 +168,8 @@ WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projectio
       "<?xml version=\"1.0\"?>\n"
       "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
       "  <UnstructuredGrid>\n"
-      "    <Piece NumberOfPoints=\"" + std::to_string(nv) + "\" NumberOfCells=\"" + std::to_string(counts.cells) + "\">\n";
+      "    <Piece NumberOfPoints=\"" +
+      std::to_string(nv) + "\" NumberOfCells=\"" + std::to_string(counts.cells) + "\">\n";
   std::uint64_t offset = 0;
   std::vector<const Block*> order;
   auto section = [&](const char* name, const std::vector<Block>& blocks) {

@@ -15,8 +15,8 @@ struct FormatName {
   const char* name;
   MeshFormat format;
 };
-constexpr FormatName kNames[] = {{"vtu", MeshFormat::vtu}, {"off", MeshFormat::off},     {"noff", MeshFormat::noff},
-                                 {"ply", MeshFormat::ply}, {"obj", MeshFormat::obj},     {"mesh", MeshFormat::medit},
+constexpr FormatName kNames[] = {{"vtu", MeshFormat::vtu},     {"off", MeshFormat::off}, {"noff", MeshFormat::noff},
+                                 {"ply", MeshFormat::ply},     {"obj", MeshFormat::obj}, {"mesh", MeshFormat::medit},
                                  {"medit", MeshFormat::medit}, {"cxm", MeshFormat::cxm}};
 
 std::string lower(std::string s) {
@@ -47,7 +47,8 @@ const char* format_name(MeshFormat format) {
   return "?";
 }
 
-WrittenCounts write_mesh(const std::string& path, MeshFormat format, const CellComplex& cc, const WriteOptions& options) {
+WrittenCounts write_mesh(const std::string& path, MeshFormat format, const CellComplex& cc,
+                         const WriteOptions& options) {
   const int d = cc.ambient_dimension, m = cc.manifold_dimension;
   if (format == MeshFormat::cxm) {
     write_file_atomically(path, [&](std::ostream& os) { write_native(os, cc, options.native); });
@@ -61,18 +62,31 @@ WrittenCounts write_mesh(const std::string& path, MeshFormat format, const CellC
                      "-manifold: use .vtu, .obj, .mesh or .cxm");
   if (format == MeshFormat::obj && m < 1) throw InputError("obj holds lines and polygons, but this is a 0-manifold");
   // The projection is resolved first, so that a spec that does not fit d fails before the file exists.
-  const bool n_dimensional = format == MeshFormat::noff || (format == MeshFormat::off && d != 3 && options.projection.empty());
-  const Projection projection = make_projection(options.projection, d, n_dimensional ? std::span<const double>{} : vertex_coordinates(cc));
+  const bool n_dimensional =
+      format == MeshFormat::noff || (format == MeshFormat::off && d != 3 && options.projection.empty());
+  const Projection projection =
+      make_projection(options.projection, d, n_dimensional ? std::span<const double>{} : vertex_coordinates(cc));
   WrittenCounts counts;
   write_file_atomically(path, [&](std::ostream& os) {
     switch (format) {
-      case MeshFormat::vtu: counts = write_vtu(os, cc, projection); break;
+      case MeshFormat::vtu:
+        counts = write_vtu(os, cc, projection);
+        break;
       case MeshFormat::off:
-      case MeshFormat::noff: counts = write_off(os, cc, projection, n_dimensional); break;
-      case MeshFormat::ply: counts = write_ply(os, cc, projection); break;
-      case MeshFormat::obj: counts = write_obj(os, cc, projection); break;
-      case MeshFormat::medit: counts = write_medit(os, cc, projection); break;
-      case MeshFormat::cxm: break;
+      case MeshFormat::noff:
+        counts = write_off(os, cc, projection, n_dimensional);
+        break;
+      case MeshFormat::ply:
+        counts = write_ply(os, cc, projection);
+        break;
+      case MeshFormat::obj:
+        counts = write_obj(os, cc, projection);
+        break;
+      case MeshFormat::medit:
+        counts = write_medit(os, cc, projection);
+        break;
+      case MeshFormat::cxm:
+        break;
     }
   });
   return counts;

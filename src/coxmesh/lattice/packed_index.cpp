@@ -26,7 +26,8 @@ std::uint32_t PackedKeyIndex::index_appended() {
     std::size_t s = home(tag);
     bool present = false;
     for (; slots_[s] != 0 && !present; s = (s + 1) & mask_)
-      present = static_cast<std::uint32_t>(slots_[s] >> 32) == tag && equal(static_cast<std::uint32_t>(slots_[s]) - 1, key(id));
+      present = static_cast<std::uint32_t>(slots_[s] >> 32) == tag &&
+                equal(static_cast<std::uint32_t>(slots_[s]) - 1, key(id));
     if (!present)
       slots_[s] = entry;
     else if (duplicate == kAbsent || id < duplicate)

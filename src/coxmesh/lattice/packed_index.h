@@ -32,7 +32,8 @@ struct KeyRun {
 class PackedKeyIndex {
  public:
   static constexpr std::uint32_t kAbsent = 0xFFFFFFFFu;
-  static constexpr std::uint32_t kMaxEntries = (1u << 31) - 1;  ///< at load ≤ 1/2, ≤ 2^32 slots: tags give every home bit
+  static constexpr std::uint32_t kMaxEntries =
+      (1u << 31) - 1;                                 ///< at load ≤ 1/2, ≤ 2^32 slots: tags give every home bit
   static constexpr std::uint32_t kNewBit = 1u << 31;  ///< insert_runs: marks the occurrence that inserted a key
 
   /// `words` = key width in 32-bit words (e.g. d for lattice vertices, packed_words(d) for simplices).
@@ -166,7 +167,9 @@ class PackedKeyIndex {
 
   /// Hints the cache to load the first slot probed for this hash (batched inserts with hashes
   /// computed ahead).
-  void prefetch(std::uint64_t hash) const { __builtin_prefetch(slots_.data() + home(static_cast<std::uint32_t>(hash >> 32))); }
+  void prefetch(std::uint64_t hash) const {
+    __builtin_prefetch(slots_.data() + home(static_cast<std::uint32_t>(hash >> 32)));
+  }
   /// Hints the cache to load the stored key that the home slot of this hash names, if the tags match.
   void prefetch_key(std::uint64_t hash) const {
     const std::uint32_t tag = static_cast<std::uint32_t>(hash >> 32);

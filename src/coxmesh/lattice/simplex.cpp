@@ -10,8 +10,8 @@ namespace coxmesh {
 
 void check_dimension(int d) {
   if (d < 1 || d > kMaxDimension)
-    throw InputError("dimension " + std::to_string(d) + " is not supported (1 <= d <= " +
-                     std::to_string(kMaxDimension) + ")");
+    throw InputError("dimension " + std::to_string(d) +
+                     " is not supported (1 <= d <= " + std::to_string(kMaxDimension) + ")");
 }
 
 void check_lattice_range(std::span<const std::int32_t> y) {
@@ -47,8 +47,7 @@ Simplex Simplex::from_partition(std::span<const std::int32_t> y, const std::vect
   for (std::size_t j = 0; j < blocks.size(); ++j) {
     if (blocks[j].empty()) throw InputError("block " + std::to_string(j) + " of the partition is empty");
     for (int i : blocks[j]) {
-      if (i < 0 || i > d)
-        throw InputError("index " + std::to_string(i) + " is outside {0.." + std::to_string(d) + "}");
+      if (i < 0 || i > d) throw InputError("index " + std::to_string(i) + " is outside {0.." + std::to_string(d) + "}");
       if (seen[i]) throw InputError("index " + std::to_string(i) + " appears in two blocks");
       seen[i] = true;
       s.block[i] = static_cast<std::uint8_t>(j);
@@ -195,7 +194,8 @@ Simplex parse_simplex(std::string_view text) {
   if (!c.accept(')')) {
     do {
       long long v = c.integer();
-      if (v > kMaxLatticeCoordinate || v < -kMaxLatticeCoordinate) c.fail("lattice coordinate out of range (|y_i| <= 2^30)");
+      if (v > kMaxLatticeCoordinate || v < -kMaxLatticeCoordinate)
+        c.fail("lattice coordinate out of range (|y_i| <= 2^30)");
       y.push_back(static_cast<std::int32_t>(v));
       if (y.size() > static_cast<std::size_t>(kMaxDimension)) c.fail("more than 31 coordinates");
     } while (c.accept(','));

@@ -40,10 +40,10 @@ void check_dimension(int d);
 inline constexpr std::int32_t kMaxLatticeCoordinate = (1 << 30);
 
 struct Simplex {
-  std::array<std::int32_t, kMaxDimension> y{};      ///< minimal vertex, entries [0, d)
+  std::array<std::int32_t, kMaxDimension> y{};          ///< minimal vertex, entries [0, d)
   std::array<std::uint8_t, kMaxDimension + 1> block{};  ///< block of each index, entries [0, d]
-  std::uint8_t d = 0;                                ///< ambient dimension
-  std::uint8_t k = 0;                                ///< simplex dimension (number of blocks − 1)
+  std::uint8_t d = 0;                                   ///< ambient dimension
+  std::uint8_t k = 0;                                   ///< simplex dimension (number of blocks − 1)
 
   int ambient_dimension() const { return d; }
   int dimension() const { return k; }

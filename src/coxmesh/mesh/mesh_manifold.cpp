@@ -54,14 +54,17 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
   // Several workers share the vertex values (F once per vertex in all), each with its own functions.
   const auto shared = trace.threads > 1 ? ImplicitOracle::make_shared_values(t, f, domain) : nullptr;
   bool first_worker = true;
-  TraceResult traced = trace_manifold(t, [&]() -> std::unique_ptr<IntersectionOracle> {
-    if (first_worker) {
-      first_worker = false;
-      return std::make_unique<ImplicitOracle>(t, f, domain, shared);
-    }
-    const ManifoldFunctions w = make();
-    return std::make_unique<ImplicitOracle>(t, w.f, with_box(w.domain), shared);
-  }, seeds.seeds, trace);
+  TraceResult traced = trace_manifold(
+      t,
+      [&]() -> std::unique_ptr<IntersectionOracle> {
+        if (first_worker) {
+          first_worker = false;
+          return std::make_unique<ImplicitOracle>(t, f, domain, shared);
+        }
+        const ManifoldFunctions w = make();
+        return std::make_unique<ImplicitOracle>(t, w.f, with_box(w.domain), shared);
+      },
+      seeds.seeds, trace);
   report.trace_seconds = seconds_since(t0);
   const double h = t.longest_edge();
   const ImplicitFunction* f_only[] = {f.get()};
@@ -69,15 +72,16 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
     std::vector<double> points;
     for (const auto& x : seeds.seeds) points.insert(points.end(), x.begin(), x.end());
     if (o.check_regularity && singular_on(f_only, points, h))
-      throw InputError("F's differential is singular at the seeds: F vanishes identically near them or its equations are "
-                       "dependent, so 0 is not a regular value of F and there is no manifold to trace");
+      throw InputError(
+          "F's differential is singular at the seeds: F vanishes identically near them or its equations are "
+          "dependent, so 0 is not a regular value of F and there is no manifold to trace");
     throw InputError("no simplex near the " + std::to_string(seeds.seeds.size()) +
                      " seeds meets the manifold: the triangulation is too coarse for it (give a smaller edge length)");
   }
   report.status = traced.status;
   report.message = traced.status == TraceStatus::max_simplices_reached && memory_binds
-                       ? "stopped at " + std::to_string(trace.max_simplices) + " simplices, about the memory limit of " +
-                             std::to_string(o.max_memory >> 20) +
+                       ? "stopped at " + std::to_string(trace.max_simplices) +
+                             " simplices, about the memory limit of " + std::to_string(o.max_memory >> 20) +
                              " MiB; give a larger edge length, a domain, or more memory"
                        : traced.message;
   report.function_evaluations = traced.function_evaluations;
@@ -96,7 +100,8 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
   const CellComplex& cc = report.cells;
   if (o.check_regularity && singular_on(f_only, {cc.vertices.data(), cc.vertices.size()}, h))
     report.warnings.push_back(
-        "F's differential is (nearly) singular on the traced set: 0 is not a regular value of F (F is a square, F >= 0, "
+        "F's differential is (nearly) singular on the traced set: 0 is not a regular value of F (F is a square, F >= "
+        "0, "
         "or its equations are dependent there); what was meshed is a perturbed level set near F = 0");
   if (o.check_regularity && domain) {
     const ImplicitFunction* f_and_domain[] = {f.get(), domain.get()};

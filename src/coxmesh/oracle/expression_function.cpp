@@ -33,8 +33,8 @@ std::string trim(std::string_view s, std::size_t& start) {
 // "… at position p of "text" (marked: abc >>> def)": p is 0-based in `text`, shown 1-based.
 std::string where(std::string_view text, std::size_t p) {
   p = std::min(p, text.size());
-  return "at position " + std::to_string(p + 1) + " of \"" + std::string(text) + "\" (marked: " +
-         std::string(text.substr(0, p)) + " >>> " + std::string(text.substr(p)) + ")";
+  return "at position " + std::to_string(p + 1) + " of \"" + std::string(text) +
+         "\" (marked: " + std::string(text.substr(0, p)) + " >>> " + std::string(text.substr(p)) + ")";
 }
 
 constexpr std::size_t kMaxExpressionLength = 1 << 16;
@@ -53,7 +53,9 @@ std::vector<Equation> split_equations(std::string_view text) {
     e.start = begin;
     e.expr = trim(text.substr(begin, end - begin), e.start);
     e.lhs_size = std::string::npos;
-    if (e.expr.empty()) throw InputError("empty equation " + where(text, e.start) + ": write e1; e2; ... with one expression per equation");
+    if (e.expr.empty())
+      throw InputError("empty equation " + where(text, e.start) +
+                       ": write e1; e2; ... with one expression per equation");
     // A single '=' that is not part of a comparison (==, <=, >=, !=) is an equation lhs = rhs.
     std::size_t eq = std::string::npos;
     for (std::size_t i = 0; i < e.expr.size(); ++i) {
@@ -81,7 +83,7 @@ std::vector<Equation> split_equations(std::string_view text) {
 std::size_t text_position(const Equation& e, std::size_t p) {
   if (e.lhs_size == std::string::npos) return e.start + p;
   if (p <= e.lhs_size + 1) return e.start + (p == 0 ? 0 : p - 1);  // "(" + lhs
-  return e.start + (p >= e.lhs_size + 3 ? p - 3 : e.lhs_size);  // ")-(" + rhs
+  return e.start + (p >= e.lhs_size + 3 ? p - 3 : e.lhs_size);     // ")-(" + rhs
 }
 
 // Index 1..kMaxDimension of a variable name, 0 if it is not a variable of coxmesh.
@@ -120,8 +122,8 @@ void define_constants(mu::Parser& p) { p.DefineConst("pi", std::numbers::pi); }
 [[noreturn]] void parse_failure(std::string_view text, const Equation& e, const mu::Parser::exception_type& ex) {
   std::string msg = ex.GetMsg();
   if (const std::size_t at = msg.find(" at position "); at != std::string::npos) msg.erase(at);
-  throw InputError("cannot parse the expression " + where(text, text_position(e, static_cast<std::size_t>(std::max(ex.GetPos(), 0)))) +
-                   ": " + msg);
+  throw InputError("cannot parse the expression " +
+                   where(text, text_position(e, static_cast<std::size_t>(std::max(ex.GetPos(), 0)))) + ": " + msg);
 }
 
 }  // namespace
@@ -129,7 +131,7 @@ void define_constants(mu::Parser& p) { p.DefineConst("pi", std::numbers::pi); }
 struct ExpressionFunction::Impl {
   std::string text;
   int d = 0, k = 0;
-  std::vector<double> variables;                  // x1..xd, bound to every parser
+  std::vector<double> variables;                     // x1..xd, bound to every parser
   std::vector<std::unique_ptr<mu::Parser>> parsers;  // one per equation (stable addresses)
 };
 
@@ -175,11 +177,11 @@ ExpressionFunction::ExpressionFunction(std::string_view text, std::optional<int>
   for (const Use& u : uses) {
     bool alias = false;
     if (variable_index(u.name, alias) > d)
-      throw InputError("the variable '" + u.name + "' " + where(text, u.position) + " is beyond the dimension d = " +
-                       std::to_string(d));
+      throw InputError("the variable '" + u.name + "' " + where(text, u.position) +
+                       " is beyond the dimension d = " + std::to_string(d));
     if (u.alias && d > 4)
-      throw InputError("the alias '" + u.name + "' " + where(text, u.position) +
-                       " is only for d <= 4: write x1..x" + std::to_string(d));
+      throw InputError("the alias '" + u.name + "' " + where(text, u.position) + " is only for d <= 4: write x1..x" +
+                       std::to_string(d));
   }
   const int k = static_cast<int>(equations.size());
   if (max_equations && k > *max_equations)

@@ -22,20 +22,25 @@ FunctionPtr sphere(int m, int d, double radius, std::vector<double> center) {
   require(static_cast<int>(center.size()) == d, "the centre must have d coordinates");
   std::vector<double> seed = center;
   seed[0] += radius;
-  return make_function(d, d - m, [m, d, r2 = radius * radius, c = center](const double* x, double* f) {
-    double s = 0;
-    for (int i = 0; i <= m; ++i) s += (x[i] - c[i]) * (x[i] - c[i]);
-    f[0] = s - r2;
-    for (int i = m + 1; i < d; ++i) f[i - m] = x[i] - c[i];
-  }, seed);
+  return make_function(
+      d, d - m,
+      [m, d, r2 = radius * radius, c = center](const double* x, double* f) {
+        double s = 0;
+        for (int i = 0; i <= m; ++i) s += (x[i] - c[i]) * (x[i] - c[i]);
+        f[0] = s - r2;
+        for (int i = m + 1; i < d; ++i) f[i - m] = x[i] - c[i];
+      },
+      seed);
 }
 
 FunctionPtr torus(double R, double r) {
   require(std::isfinite(R) && std::isfinite(r) && r > 0 && R > r, "a torus needs major radius > minor radius > 0");
-  return make_function(3, 1, [R, r](const double* x, double* f) {
-    const double q = std::sqrt(x[0] * x[0] + x[1] * x[1]) - R;
-    f[0] = q * q + x[2] * x[2] - r * r;
-  }, {R + r, 0, 0});
+  return make_function(3, 1,
+                       [R, r](const double* x, double* f) {
+                         const double q = std::sqrt(x[0] * x[0] + x[1] * x[1]) - R;
+                         f[0] = q * q + x[2] * x[2] - r * r;
+                       },
+                       {R + r, 0, 0});
 }
 
 FunctionPtr affine_plane(const Eigen::MatrixXd& normals, const Eigen::VectorXd& point) {
@@ -46,40 +51,49 @@ FunctionPtr affine_plane(const Eigen::MatrixXd& normals, const Eigen::VectorXd& 
   require(lu.rank() == k, "the normals of the affine plane must be linearly independent");
   Eigen::MatrixXd n = normals;
   n.colwise().normalize();
-  return make_function(d, k, [n, p = point, d, k](const double* x, double* f) {
-    for (int j = 0; j < k; ++j) {
-      double s = 0;
-      for (int i = 0; i < d; ++i) s += n(i, j) * (x[i] - p[i]);
-      f[j] = s;
-    }
-  }, to_vector(point));
+  return make_function(
+      d, k,
+      [n, p = point, d, k](const double* x, double* f) {
+        for (int j = 0; j < k; ++j) {
+          double s = 0;
+          for (int i = 0; i < d; ++i) s += n(i, j) * (x[i] - p[i]);
+          f[j] = s;
+        }
+      },
+      to_vector(point));
 }
 
 FunctionPtr chair(double a, double b, double s) {
   // A seed on the positive z axis: (z² − a s²)² = b (z − s)²(z + s)², i.e. z² − a s² = √b (z² − s²).
   const double z0 = s * std::sqrt((a - std::sqrt(b)) / (1 - std::sqrt(b)));
-  return make_function(3, 1, [a, b, s](const double* p, double* f) {
-    const double x = p[0], y = p[1], z = p[2];
-    const double t = x * x + y * y + z * z - a * s * s;
-    f[0] = t * t - b * ((z - s) * (z - s) - 2 * x * x) * ((z + s) * (z + s) - 2 * y * y);
-  }, {0, 0, z0});
+  return make_function(3, 1,
+                       [a, b, s](const double* p, double* f) {
+                         const double x = p[0], y = p[1], z = p[2];
+                         const double t = x * x + y * y + z * z - a * s * s;
+                         f[0] = t * t - b * ((z - s) * (z - s) - 2 * x * x) * ((z + s) * (z + s) - 2 * y * y);
+                       },
+                       {0, 0, z0});
 }
 
 FunctionPtr iron() {
-  return make_function(3, 1, [](const double* p, double* f) {
-    const double x = p[0], y = p[1], z = p[2];
-    f[0] = -(std::pow(x, 6) + std::pow(y, 6) + std::pow(z, 6)) / 300. + x * y * y * z / 2.1 + y * y +
-           std::pow(z - 2, 4) - 1;
-  }, {std::pow(4500.0, 1.0 / 6), 0, 0});  // −x⁶/300 + 16 − 1 = 0
+  return make_function(3, 1,
+                       [](const double* p, double* f) {
+                         const double x = p[0], y = p[1], z = p[2];
+                         f[0] = -(std::pow(x, 6) + std::pow(y, 6) + std::pow(z, 6)) / 300. + x * y * y * z / 2.1 +
+                                y * y + std::pow(z - 2, 4) - 1;
+                       },
+                       {std::pow(4500.0, 1.0 / 6), 0, 0});  // −x⁶/300 + 16 − 1 = 0
 }
 
 FunctionPtr lemniscate_of_revolution(double a) {
   require(std::isfinite(a) && a > 0, "the lemniscate parameter must be positive");
-  return make_function(3, 1, [a](const double* p, double* f) {
-    const double x2 = p[0] * p[0], y2 = p[1] * p[1], z2 = p[2] * p[2];
-    const double t = x2 + y2 + z2;
-    f[0] = t * t - 2 * a * a * (x2 - y2 - z2);
-  }, {std::sqrt(2.0) * a, 0, 0});
+  return make_function(3, 1,
+                       [a](const double* p, double* f) {
+                         const double x2 = p[0] * p[0], y2 = p[1] * p[1], z2 = p[2] * p[2];
+                         const double t = x2 + y2 + z2;
+                         f[0] = t * t - 2 * a * a * (x2 - y2 - z2);
+                       },
+                       {std::sqrt(2.0) * a, 0, 0});
 }
 
 FunctionPtr whitney_umbrella() {
@@ -90,30 +104,40 @@ FunctionPtr moment_curve(int d) {
   require(d >= 2, "the moment curve needs d >= 2");
   std::vector<double> seed(d);  // t = 1/2, off the lattice vertex at the origin
   for (int i = 0; i < d; ++i) seed[i] = std::ldexp(1.0, -(i + 1));
-  return make_function(d, d - 1, [d](const double* x, double* f) {
-    for (int i = 1; i < d; ++i) f[i - 1] = x[i] - x[0] * x[i - 1];
-  }, seed);
+  return make_function(
+      d, d - 1,
+      [d](const double* x, double* f) {
+        for (int i = 1; i < d; ++i) f[i - 1] = x[i] - x[0] * x[i - 1];
+      },
+      seed);
 }
 
 FunctionPtr rotation_group_so3() {
-  return make_function(9, 6, [](const double* m, double* f) {
-    // Columns c_i = (m[i], m[3+i], m[6+i]); equations ⟨c_i, c_j⟩ − δ_ij for i ≤ j.
-    int e = 0;
-    for (int i = 0; i < 3; ++i)
-      for (int j = i; j < 3; ++j)
-        f[e++] = m[i] * m[j] + m[3 + i] * m[3 + j] + m[6 + i] * m[6 + j] - (i == j ? 1.0 : 0.0);
-  }, {1, 0, 0, 0, 1, 0, 0, 0, 1});
+  return make_function(9, 6,
+                       [](const double* m, double* f) {
+                         // Columns c_i = (m[i], m[3+i], m[6+i]); equations ⟨c_i, c_j⟩ − δ_ij for i ≤ j.
+                         int e = 0;
+                         for (int i = 0; i < 3; ++i)
+                           for (int j = i; j < 3; ++j)
+                             f[e++] = m[i] * m[j] + m[3 + i] * m[3 + j] + m[6 + i] * m[6 + j] - (i == j ? 1.0 : 0.0);
+                       },
+                       {1, 0, 0, 0, 1, 0, 0, 0, 1});
 }
 
 FunctionPtr product(FunctionPtr f, FunctionPtr g) {
   const int d1 = f->ambient_dimension(), d2 = g->ambient_dimension(), k1 = f->codimension(), k2 = g->codimension();
   std::vector<double> seed = f->seed(), s2 = g->seed();
-  if (seed.empty() || s2.empty()) seed.clear();
-  else seed.insert(seed.end(), s2.begin(), s2.end());
-  return make_function(d1 + d2, k1 + k2, [f, g, d1, k1](const double* x, double* v) {
-    f->evaluate(x, v);
-    g->evaluate(x + d1, v + k1);
-  }, seed);
+  if (seed.empty() || s2.empty())
+    seed.clear();
+  else
+    seed.insert(seed.end(), s2.begin(), s2.end());
+  return make_function(
+      d1 + d2, k1 + k2,
+      [f, g, d1, k1](const double* x, double* v) {
+        f->evaluate(x, v);
+        g->evaluate(x + d1, v + k1);
+      },
+      seed);
 }
 
 FunctionPtr embed(FunctionPtr f, int d) {
@@ -121,30 +145,37 @@ FunctionPtr embed(FunctionPtr f, int d) {
   require(d >= df, "cannot embed a function of R^" + std::to_string(df) + " into R^" + std::to_string(d));
   std::vector<double> seed = f->seed();
   if (!seed.empty()) seed.resize(d, 0.0);
-  return make_function(d, kf + d - df, [f, d, df, kf](const double* x, double* v) {
-    f->evaluate(x, v);
-    for (int i = df; i < d; ++i) v[kf + i - df] = x[i];
-  }, seed);
+  return make_function(
+      d, kf + d - df,
+      [f, d, df, kf](const double* x, double* v) {
+        f->evaluate(x, v);
+        for (int i = df; i < d; ++i) v[kf + i - df] = x[i];
+      },
+      seed);
 }
 
 FunctionPtr linear_map(FunctionPtr f, const Eigen::MatrixXd& a) {
   const int d = f->ambient_dimension();
-  require(a.rows() == d && a.cols() == d, "the linear map must be a " + std::to_string(d) + "x" + std::to_string(d) + " matrix");
+  require(a.rows() == d && a.cols() == d,
+          "the linear map must be a " + std::to_string(d) + "x" + std::to_string(d) + " matrix");
   require(a.allFinite(), "the linear map has a NaN or infinite entry");
   Eigen::FullPivLU<Eigen::MatrixXd> lu(a);
   require(lu.isInvertible(), "the linear map must be invertible");
   const Eigen::MatrixXd inv = lu.inverse();  // factorised once
   std::vector<double> seed = f->seed();
   if (!seed.empty()) seed = to_vector(a * Eigen::Map<const Eigen::VectorXd>(seed.data(), d));
-  return make_function(d, f->codimension(), [f, inv, d](const double* x, double* v) {
-    double y[64];
-    for (int i = 0; i < d; ++i) {
-      double s = 0;
-      for (int j = 0; j < d; ++j) s += inv(i, j) * x[j];
-      y[i] = s;
-    }
-    f->evaluate(y, v);
-  }, seed);
+  return make_function(
+      d, f->codimension(),
+      [f, inv, d](const double* x, double* v) {
+        double y[64];
+        for (int i = 0; i < d; ++i) {
+          double s = 0;
+          for (int j = 0; j < d; ++j) s += inv(i, j) * x[j];
+          y[i] = s;
+        }
+        f->evaluate(y, v);
+      },
+      seed);
 }
 
 FunctionPtr translate(FunctionPtr f, const Eigen::VectorXd& b) {
@@ -153,38 +184,48 @@ FunctionPtr translate(FunctionPtr f, const Eigen::VectorXd& b) {
   require(b.allFinite(), "the translation has a NaN or infinite coordinate");
   std::vector<double> seed = f->seed();
   for (int i = 0; i < static_cast<int>(seed.size()); ++i) seed[i] += b[i];
-  return make_function(d, f->codimension(), [f, b, d](const double* x, double* v) {
-    double y[64];
-    for (int i = 0; i < d; ++i) y[i] = x[i] - b[i];
-    f->evaluate(y, v);
-  }, seed);
+  return make_function(
+      d, f->codimension(),
+      [f, b, d](const double* x, double* v) {
+        double y[64];
+        for (int i = 0; i < d; ++i) y[i] = x[i] - b[i];
+        f->evaluate(y, v);
+      },
+      seed);
 }
 
 FunctionPtr negation(FunctionPtr f) {
   const int k = f->codimension();
-  return make_function(f->ambient_dimension(), k, [f, k](const double* x, double* v) {
-    f->evaluate(x, v);
-    for (int i = 0; i < k; ++i) v[i] = -v[i];
-  }, f->seed());
+  return make_function(
+      f->ambient_dimension(), k,
+      [f, k](const double* x, double* v) {
+        f->evaluate(x, v);
+        for (int i = 0; i < k; ++i) v[i] = -v[i];
+      },
+      f->seed());
 }
 
 FunctionPtr ball_domain(const std::vector<double>& center, double radius) {
   require(std::isfinite(radius) && radius > 0, "the domain radius must be finite and positive");
   const int d = static_cast<int>(center.size());
-  return make_function(d, 1, [c = center, r2 = radius * radius, d](const double* x, double* v) {
-    double s = 0;
-    for (int i = 0; i < d; ++i) s += (x[i] - c[i]) * (x[i] - c[i]);
-    v[0] = s - r2;
-  }, {});
+  return make_function(d, 1,
+                       [c = center, r2 = radius * radius, d](const double* x, double* v) {
+                         double s = 0;
+                         for (int i = 0; i < d; ++i) s += (x[i] - c[i]) * (x[i] - c[i]);
+                         v[0] = s - r2;
+                       },
+                       {});
 }
 
 FunctionPtr half_space_domain(const std::vector<double>& normal, double c) {
   const int d = static_cast<int>(normal.size());
-  return make_function(d, 1, [n = normal, c, d](const double* x, double* v) {
-    double s = -c;
-    for (int i = 0; i < d; ++i) s += n[i] * x[i];
-    v[0] = s;
-  }, {});
+  return make_function(d, 1,
+                       [n = normal, c, d](const double* x, double* v) {
+                         double s = -c;
+                         for (int i = 0; i < d; ++i) s += n[i] * x[i];
+                         v[0] = s;
+                       },
+                       {});
 }
 
 bool Box::contains(const double* x) const {
@@ -199,11 +240,13 @@ FunctionPtr box_domain(const Box& box) {
   for (int i = 0; i < d; ++i)
     if (!(box.lo[i] < box.hi[i]) || !std::isfinite(box.lo[i]) || !std::isfinite(box.hi[i]))
       throw InputError("a box needs finite bounds with lo < hi in every coordinate");
-  return make_function(d, 1, [box, d](const double* x, double* v) {
-    double s = -std::numeric_limits<double>::infinity();
-    for (int i = 0; i < d; ++i) s = std::max({s, box.lo[i] - x[i], x[i] - box.hi[i]});
-    v[0] = s;
-  }, {});
+  return make_function(d, 1,
+                       [box, d](const double* x, double* v) {
+                         double s = -std::numeric_limits<double>::infinity();
+                         for (int i = 0; i < d; ++i) s = std::max({s, box.lo[i] - x[i], x[i] - box.hi[i]});
+                         v[0] = s;
+                       },
+                       {});
 }
 
 namespace {

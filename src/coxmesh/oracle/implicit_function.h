@@ -35,7 +35,8 @@ using FunctionPtr = std::shared_ptr<const ImplicitFunction>;
 template <class Fn>
 class CallableFunction final : public ImplicitFunction {
  public:
-  CallableFunction(int d, int k, Fn fn, std::vector<double> seed = {}) : d_(d), k_(k), fn_(std::move(fn)), seed_(std::move(seed)) {}
+  CallableFunction(int d, int k, Fn fn, std::vector<double> seed = {})
+      : d_(d), k_(k), fn_(std::move(fn)), seed_(std::move(seed)) {}
   int ambient_dimension() const override { return d_; }
   int codimension() const override { return k_; }
   void evaluate(const double* x, double* value) const override { fn_(x, value); }

@@ -13,7 +13,11 @@ namespace coxmesh {
 
 ImplicitOracle::ImplicitOracle(const Triangulation& triangulation, FunctionPtr f, FunctionPtr domain,
                                std::shared_ptr<SharedVertexValues> shared)
-    : triangulation_(triangulation), f_(std::move(f)), domain_(std::move(domain)), shared_(std::move(shared)), cache_(1) {
+    : triangulation_(triangulation),
+      f_(std::move(f)),
+      domain_(std::move(domain)),
+      shared_(std::move(shared)),
+      cache_(1) {
   if (!f_) throw InputError("no implicit function given");
   d_ = triangulation_.dimension();
   k_ = f_->codimension();
@@ -27,9 +31,9 @@ ImplicitOracle::ImplicitOracle(const Triangulation& triangulation, FunctionPtr f
   scratch_.resize(stride_ + d_);
   if (shared_) {
     if (shared_->dimension() != d_ || shared_->stride() != stride_)
-      throw InputError("the shared vertex values hold " + std::to_string(shared_->stride()) + " values per vertex of R^" +
-                       std::to_string(shared_->dimension()) + ", this oracle needs " + std::to_string(stride_) +
-                       " per vertex of R^" + std::to_string(d_));
+      throw InputError("the shared vertex values hold " + std::to_string(shared_->stride()) +
+                       " values per vertex of R^" + std::to_string(shared_->dimension()) + ", this oracle needs " +
+                       std::to_string(stride_) + " per vertex of R^" + std::to_string(d_));
   } else {
     cache_ = PackedKeyIndex(d_);
   }
@@ -108,7 +112,8 @@ void ImplicitOracle::prefetch(std::span<const std::uint32_t> packed_simplices) {
   if (n == 0) return;
   const auto vertex = [&](int i) { return reinterpret_cast<const std::int32_t*>(cache_.key(cached + i)); };
   batch_points_.resize(static_cast<std::size_t>(n) * d_);
-  for (int i = 0; i < n; ++i) triangulation_.cartesian(vertex(i), batch_points_.data() + static_cast<std::size_t>(i) * d_);
+  for (int i = 0; i < n; ++i)
+    triangulation_.cartesian(vertex(i), batch_points_.data() + static_cast<std::size_t>(i) * d_);
   values_.resize(static_cast<std::size_t>(cached + n) * stride_);
   double* out = values_.data() + static_cast<std::size_t>(cached) * stride_;
   try {
@@ -119,7 +124,8 @@ void ImplicitOracle::prefetch(std::span<const std::uint32_t> packed_simplices) {
       f_->evaluate_batch(batch_points_.data(), n, batch_values_.data());
       domain_->evaluate_batch(batch_points_.data(), n, batch_values_.data() + static_cast<std::size_t>(n) * k_);
       for (int i = 0; i < n; ++i) {
-        std::copy_n(batch_values_.data() + static_cast<std::size_t>(i) * k_, k_, out + static_cast<std::size_t>(i) * stride_);
+        std::copy_n(batch_values_.data() + static_cast<std::size_t>(i) * k_, k_,
+                    out + static_cast<std::size_t>(i) * stride_);
         out[static_cast<std::size_t>(i) * stride_ + k_] = batch_values_[static_cast<std::size_t>(n) * k_ + i];
       }
     }

@@ -70,12 +70,12 @@ class ImplicitOracle final : public IntersectionOracle {
   std::vector<std::int32_t> front_keys_;
   std::vector<double> front_values_;
   std::vector<std::uint8_t> front_used_;
-  PackedKeyIndex cache_;  // without shared_: every vertex this oracle met
+  PackedKeyIndex cache_;       // without shared_: every vertex this oracle met
   HugeVector<double> values_;  // stride_ per cached vertex: F values, then D
   std::vector<double> scratch_;
-  bool batches_ = false;                         // prefetch evaluates levels in batches
+  bool batches_ = false;                             // prefetch evaluates levels in batches
   std::vector<double> batch_points_, batch_values_;  // prefetch's vertices (Cartesian) and F, D there
-  SmallLu pivot_lu_;                        // M(τ) of the last pivot_enter
+  SmallLu pivot_lu_;                                 // M(τ) of the last pivot_enter
   std::array<double, SmallLu::kMaxN> pivot_lambda_;  // its barycentric solution (k = 1: F at τ's ends)
   std::uint64_t evaluations_ = 0;
   bool cache_enabled_ = true;

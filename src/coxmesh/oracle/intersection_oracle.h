@@ -12,8 +12,8 @@ namespace coxmesh {
 
 /// What the oracle says of a k-simplex τ (k = codimension of M).
 struct Intersection {
-  bool hit = false;     ///< τ meets the PL approximation M̂ (transversally)
-  double domain = -1;   ///< D̂ at the intersection point: < 0 inside the domain (−1 without domain)
+  bool hit = false;    ///< τ meets the PL approximation M̂ (transversally)
+  double domain = -1;  ///< D̂ at the intersection point: < 0 inside the domain (−1 without domain)
 };
 
 class IntersectionOracle {

@@ -10,14 +10,19 @@ const std::vector<PresetInfo>& preset_catalogue() {
   static const std::vector<PresetInfo> catalogue = {
       {"torus", "torus in R^3, --radius R (1) and --minor-radius r (0.4)", {"--radius", "--minor-radius"}},
       {"sphere", "S^m of --radius (1) in R^--dim (m+1), --m (2), --center", {"--m", "--dim", "--radius", "--center"}},
-      {"flat-torus", "S^1 x S^1 in R^4, circles of --radius (1) and --minor-radius (1)", {"--radius", "--minor-radius"}},
+      {"flat-torus",
+       "S^1 x S^1 in R^4, circles of --radius (1) and --minor-radius (1)",
+       {"--radius", "--minor-radius"}},
       {"chair", "the chair surface in R^3", {}},
       {"iron", "the iron surface in R^3", {}},
       {"lemniscate", "lemniscate of revolution in R^3, --radius a (1)", {"--radius"}},
       {"whitney-umbrella", "Whitney umbrella x^2 = y^2 z in R^3, inside the ball of --radius (2)", {"--radius"}},
-      {"moment-curve", "moment curve (t, t^2, ..., t^d) in R^--dim (3), inside the ball of --radius (1.5)", {"--dim", "--radius"}},
+      {"moment-curve",
+       "moment curve (t, t^2, ..., t^d) in R^--dim (3), inside the ball of --radius (1.5)",
+       {"--dim", "--radius"}},
       {"so3", "the rotation group SO(3) in R^9 (M^T M = I)", {}},
-      {"plane", "the plane x_m = ... = x_{d-1} = 0 in R^--dim, --m (2), inside the ball of --radius (1) around --center",
+      {"plane",
+       "the plane x_m = ... = x_{d-1} = 0 in R^--dim, --m (2), inside the ball of --radius (1) around --center",
        {"--m", "--dim", "--radius", "--center"}},
   };
   return catalogue;
@@ -26,7 +31,8 @@ const std::vector<PresetInfo>& preset_catalogue() {
 Preset make_preset(const std::string& name, const PresetParameters& p) {
   auto center_or_origin = [&](int d) {
     if (!p.center.empty() && static_cast<int>(p.center.size()) != d)
-      throw InputError("--center has " + std::to_string(p.center.size()) + " coordinates, expected " + std::to_string(d));
+      throw InputError("--center has " + std::to_string(p.center.size()) + " coordinates, expected " +
+                       std::to_string(d));
     return p.center.empty() ? std::vector<double>(d, 0.0) : p.center;
   };
   if (name == "torus") {

@@ -11,17 +11,17 @@
 namespace coxmesh {
 
 struct PresetParameters {
-  int m = 2;                   ///< --m: intrinsic dimension (sphere, plane)
-  std::optional<int> dim;      ///< --dim: ambient dimension
+  int m = 2;               ///< --m: intrinsic dimension (sphere, plane)
+  std::optional<int> dim;  ///< --dim: ambient dimension
   std::optional<double> radius, minor_radius;
   std::vector<double> center;
 };
 
 struct Preset {
   FunctionPtr function;
-  FunctionPtr domain;          ///< built-in domain for unbounded manifolds (may be null)
-  double edge_length;          ///< default longest edge of the ambient triangulation
-  double extent;               ///< half-width of the default box around the origin
+  FunctionPtr domain;  ///< built-in domain for unbounded manifolds (may be null)
+  double edge_length;  ///< default longest edge of the ambient triangulation
+  double extent;       ///< half-width of the default box around the origin
 };
 
 struct PresetInfo {

@@ -144,7 +144,8 @@ SampleFrames estimate_frames(const SampleTree& tree, int m, const FrameOptions& 
     for (const Edge& e : edges)
       if (out.within_radius[e.a] > m && out.within_radius[e.b] > m) {
         double s = 0;
-        for (int t = 0; t < d; ++t) s += (tree.point(e.a)[t] - tree.point(e.b)[t]) * (tree.point(e.a)[t] - tree.point(e.b)[t]);
+        for (int t = 0; t < d; ++t)
+          s += (tree.point(e.a)[t] - tree.point(e.b)[t]) * (tree.point(e.a)[t] - tree.point(e.b)[t]);
         by_length.push_back({s, e.a, e.b});
       }
     std::sort(by_length.begin(), by_length.end());

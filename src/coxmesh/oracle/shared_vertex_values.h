@@ -170,7 +170,7 @@ class SharedVertexValues {
   int d_, stride_;
   std::array<Shard, kShards> shards_;
   std::atomic<const Table*> table_{nullptr};
-  std::vector<std::unique_ptr<Table>> tables_;      // the current one last
+  std::vector<std::unique_ptr<Table>> tables_;  // the current one last
   std::mutex grow_mutex_;
 };
 

@@ -72,7 +72,7 @@ bool exact_solve(int n, const double* m, double* lambda) {
   }
   for (int r = 0; r < n; ++r) {
     boost::multiprecision::cpp_rational q(a[r][n]);  // (not the two-argument constructor: Boost 1.74
-    q /= a[r][r];                                     // rejects a zero numerator over a negative)
+    q /= a[r][r];                                    // rejects a zero numerator over a negative)
     lambda[r] = static_cast<double>(q);
   }
   return true;

@@ -51,8 +51,8 @@ std::vector<int> sorted(std::vector<int> ids) {
 // (g(0) is its point of type 0): the point across facet j is g(σ_j(v_j)) = w_0 + Q·σ_j(v_j), and the
 // new alcove is (g∘σ_j)(F), linear part Q·(I − 2 n̂_j n̂_jᵀ).
 AlcoveComplex breadth_first(const Alcove& a, const std::vector<bool>& facet_allowed, int max_depth,
-                            std::size_t max_alcoves, const std::function<bool(const AlcoveComplex&,
-                                                                                 const std::vector<int>&)>& keep) {
+                            std::size_t max_alcoves,
+                            const std::function<bool(const AlcoveComplex&, const std::vector<int>&)>& keep) {
   const int d = a.dimension;
   Eigen::MatrixXd unit(d + 1, d), mirror(d + 1, d);
   for (int j = 0; j <= d; ++j) {
@@ -218,7 +218,8 @@ TilingCheck check_tiling(const Alcove& alcove, const AlcoveComplex& complex, dou
   };
   for (std::size_t a = 0; a < complex.alcove_count(); ++a) {
     const std::vector<int> ids = ids_of(a);
-    if (!alcove_ids.emplace(sorted(ids), a).second) fail(out.face_to_face, "alcove " + std::to_string(a) + " is listed twice");
+    if (!alcove_ids.emplace(sorted(ids), a).second)
+      fail(out.face_to_face, "alcove " + std::to_string(a) + " is listed twice");
     for (int j = 0; j <= d; ++j) {
       std::vector<int> facet = ids;
       facet.erase(facet.begin() + j);
@@ -232,10 +233,12 @@ TilingCheck check_tiling(const Alcove& alcove, const AlcoveComplex& complex, dou
     const Eigen::MatrixXd w = complex.alcove_vertices(a);
     const std::string name = "alcove " + std::to_string(a);
     for (int s = 0; s <= d; ++s) {
-      if (complex.point_type[ids[s]] != s) fail(out.types_consistent, name + ": point of type " + std::to_string(s) + " has another type");
+      if (complex.point_type[ids[s]] != s)
+        fail(out.types_consistent, name + ": point of type " + std::to_string(s) + " has another type");
       for (int t = s + 1; t <= d; ++t)
         if (std::abs((w.row(s) - w.row(t)).norm() - (reference.row(s) - reference.row(t)).norm()) > tol)
-          fail(out.congruent, name + ": edge " + std::to_string(s) + "-" + std::to_string(t) + " differs from alcove 0");
+          fail(out.congruent,
+               name + ": edge " + std::to_string(s) + "-" + std::to_string(t) + " differs from alcove 0");
     }
     // Mirror images across the facets, by plain geometry.
     const Eigen::MatrixXd inv = inverse_edges(w);
@@ -250,7 +253,8 @@ TilingCheck check_tiling(const Alcove& alcove, const AlcoveComplex& complex, dou
       const auto found = alcove_ids.find(sorted(next));
       if (found == alcove_ids.end()) break;
       if (ids_of(found->second) != next)
-        fail(out.mirror_neighbours, name + ": the alcove across facet " + std::to_string(j) + " is not its mirror image");
+        fail(out.mirror_neighbours,
+             name + ": the alcove across facet " + std::to_string(j) + " is not its mirror image");
       neighbours.push_back(next);
     }
     if (static_cast<int>(neighbours.size()) != d + 1) continue;

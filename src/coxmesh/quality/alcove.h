@@ -45,7 +45,7 @@ struct Alcove {
   Eigen::MatrixXd vertices;              ///< (d+1) × d, row 0 = 0, row i = ω_i^∨ / c_i
   Eigen::MatrixXd facet_normals;         ///< (d+1) × d, row 0 = s̃, row i = s_i
   Eigen::VectorXd facet_offsets;         ///< d+1: facet i lies on ⟨x, facet_normals.row(i)⟩ = offset_i
-  long key_scale = 1;                    ///< lcm(c_i): key_scale·⟨x, s_i⟩ ∈ Z at every vertex of the triangulation
+  long key_scale = 1;  ///< lcm(c_i): key_scale·⟨x, s_i⟩ ∈ Z at every vertex of the triangulation
 };
 
 /// Builds the fundamental alcove of the affine type (f, d) from make_root_system(f, d). O(|R|·d·n + d³).
@@ -57,11 +57,11 @@ Alcove fundamental_alcove(const RootSystem& rs);
 /// A finite set of alcoves of the Coxeter triangulation, generated from the fundamental one by facet
 /// reflections. Struct of arrays; alcove 0 is the fundamental alcove.
 struct AlcoveComplex {
-  int dimension = 0;                ///< d
-  std::vector<double> points;       ///< #points × d, row-major
-  std::vector<int> point_type;      ///< #points: type t of the point (an image of vertex v_t)
-  std::vector<int> alcove_points;   ///< #alcoves × (d+1), row-major: entry t = the point of type t
-  std::vector<int> depth;           ///< #alcoves: facet reflections needed from alcove 0 (BFS distance)
+  int dimension = 0;               ///< d
+  std::vector<double> points;      ///< #points × d, row-major
+  std::vector<int> point_type;     ///< #points: type t of the point (an image of vertex v_t)
+  std::vector<int> alcove_points;  ///< #alcoves × (d+1), row-major: entry t = the point of type t
+  std::vector<int> depth;          ///< #alcoves: facet reflections needed from alcove 0 (BFS distance)
 
   std::size_t point_count() const { return point_type.size(); }
   std::size_t alcove_count() const { return depth.size(); }
@@ -97,7 +97,7 @@ struct TilingCheck {
   bool congruent = true;             ///< typed edge lengths of every alcove equal those of alcove 0
   bool types_consistent = true;      ///< each alcove lists its points in type order
   bool mirror_neighbours = true;     ///< the neighbour across each facet of an interior alcove is its mirror image
-  bool face_to_face = true;          ///< each facet of an interior alcove lies in exactly two alcoves, on opposite sides
+  bool face_to_face = true;  ///< each facet of an interior alcove lies in exactly two alcoves, on opposite sides
   std::string problem;
   bool ok() const { return congruent && types_consistent && mirror_neighbours && face_to_face; }
 };

@@ -102,9 +102,12 @@ RelativeMeasures relative_to_regular(const SimplexMeasures& m) {
 
 std::string to_string(DelaunayStatus s) {
   switch (s) {
-    case DelaunayStatus::yes: return "yes";
-    case DelaunayStatus::degenerate: return "degenerate";
-    case DelaunayStatus::no: return "no";
+    case DelaunayStatus::yes:
+      return "yes";
+    case DelaunayStatus::degenerate:
+      return "degenerate";
+    case DelaunayStatus::no:
+      return "no";
   }
   return "?";
 }

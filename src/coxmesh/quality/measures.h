@@ -18,19 +18,19 @@ namespace coxmesh::quality {
 
 /// Measures of one d-simplex.
 struct SimplexMeasures {
-  int dimension = 0;                          ///< d
+  int dimension = 0;  ///< d
   double longest_edge = 0, shortest_edge = 0;
-  double edge_ratio = 0;                      ///< L / l
-  Eigen::VectorXd heights;                    ///< d+1: h_i
+  double edge_ratio = 0;    ///< L / l
+  Eigen::VectorXd heights;  ///< d+1: h_i
   double min_height = 0;
-  Eigen::VectorXd circumcentre;               ///< d
-  Eigen::VectorXd circumcentre_barycentric;   ///< d+1, summing to 1
+  Eigen::VectorXd circumcentre;              ///< d
+  Eigen::VectorXd circumcentre_barycentric;  ///< d+1, summing to 1
   double circumradius = 0, inradius = 0, volume = 0;
-  double thickness = 0;                       ///< h_min / L
-  double thickness_normalized = 0;            ///< h_min / (d·L)
-  double radius_ratio = 0;                    ///< r / R
-  double fatness = 0;                         ///< vol / L^d
-  double aspect_ratio = 0;                    ///< h_min / R
+  double thickness = 0;             ///< h_min / L
+  double thickness_normalized = 0;  ///< h_min / (d·L)
+  double radius_ratio = 0;          ///< r / R
+  double fatness = 0;               ///< vol / L^d
+  double aspect_ratio = 0;          ///< h_min / R
 };
 
 /// Measures of the simplex whose vertices are the rows of `vertices` ((d+1) × d, d ≥ 1). O(d³).
@@ -44,8 +44,8 @@ SimplexMeasures regular_simplex_measures(int d);
 /// Scale-invariant measures divided by those of the regular simplex of the same dimension (1 for
 /// the regular simplex, < 1 otherwise).
 struct RelativeMeasures {
-  double thickness = 0;      ///< also the ratio for thickness_normalized
-  double radius_ratio = 0;   ///< = d·r/R
+  double thickness = 0;     ///< also the ratio for thickness_normalized
+  double radius_ratio = 0;  ///< = d·r/R
   double fatness = 0;
   double aspect_ratio = 0;
 };
@@ -82,9 +82,9 @@ DelaunayResult delaunay_direct(const AlcoveComplex& complex, double tol = kDelau
 struct CoxeterQuality {
   Family family = Family::A;
   int dimension = 0;
-  SimplexMeasures measures;   ///< of the fundamental alcove
+  SimplexMeasures measures;  ///< of the fundamental alcove
   RelativeMeasures relative;
-  DelaunayResult delaunay;    ///< by the criterion of thesis §2.3, §2.5
+  DelaunayResult delaunay;                        ///< by the criterion of thesis §2.3, §2.5
   std::optional<DelaunayResult> delaunay_direct;  ///< on a generated neighbourhood, when computed
 };
 

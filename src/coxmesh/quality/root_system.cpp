@@ -6,8 +6,8 @@
 #include <cmath>
 #include <deque>
 #include <numeric>
-#include <unordered_set>
 #include <stdexcept>
+#include <unordered_set>
 
 #include "coxmesh/lattice/simplex.h"  // InputError
 
@@ -19,40 +19,59 @@ using IntVector = std::vector<int>;  // a root in doubled coordinates (2·x is i
 
 int min_rank(Family f) {
   switch (f) {
-    case Family::A: return 1;
-    case Family::B: case Family::C: return 2;
-    case Family::D: return 4;
-    case Family::E: return 6;
-    case Family::F: return 4;
-    case Family::G: return 2;
+    case Family::A:
+      return 1;
+    case Family::B:
+    case Family::C:
+      return 2;
+    case Family::D:
+      return 4;
+    case Family::E:
+      return 6;
+    case Family::F:
+      return 4;
+    case Family::G:
+      return 2;
   }
   return 0;
 }
 
 int max_rank(Family f) {
   switch (f) {
-    case Family::E: return 8;
-    case Family::F: return 4;
-    case Family::G: return 2;
-    default: return kMaxRank;
+    case Family::E:
+      return 8;
+    case Family::F:
+      return 4;
+    case Family::G:
+      return 2;
+    default:
+      return kMaxRank;
   }
 }
 
 std::string describe_ranks(Family f) {
   switch (f) {
-    case Family::E: return "6, 7 or 8";
-    case Family::F: return "4 only";
-    case Family::G: return "2 only";
-    default: return std::to_string(min_rank(f)) + ".." + std::to_string(kMaxRank);
+    case Family::E:
+      return "6, 7 or 8";
+    case Family::F:
+      return "4 only";
+    case Family::G:
+      return "2 only";
+    default:
+      return std::to_string(min_rank(f)) + ".." + std::to_string(kMaxRank);
   }
 }
 
 int ambient_dimension(Family f, int d) {
   switch (f) {
-    case Family::A: return d + 1;
-    case Family::E: return 8;
-    case Family::G: return 3;
-    default: return d;
+    case Family::A:
+      return d + 1;
+    case Family::E:
+      return 8;
+    case Family::G:
+      return 3;
+    default:
+      return d;
   }
 }
 
@@ -64,10 +83,21 @@ std::vector<IntVector> doubled_simple_roots(Family f, int d) {
     for (int i = 0; i < count; ++i) s[i][i] = 2, s[i][i + 1] = -2;
   };
   switch (f) {
-    case Family::A: chain(d); break;
-    case Family::B: chain(d - 1); s[d - 1][d - 1] = 2; break;
-    case Family::C: chain(d - 1); s[d - 1][d - 1] = 4; break;
-    case Family::D: chain(d - 1); s[d - 1][d - 2] = 2, s[d - 1][d - 1] = 2; break;
+    case Family::A:
+      chain(d);
+      break;
+    case Family::B:
+      chain(d - 1);
+      s[d - 1][d - 1] = 2;
+      break;
+    case Family::C:
+      chain(d - 1);
+      s[d - 1][d - 1] = 4;
+      break;
+    case Family::D:
+      chain(d - 1);
+      s[d - 1][d - 2] = 2, s[d - 1][d - 1] = 2;
+      break;
     case Family::E:
       // s1 = ½(e1+e8) − ½(e2+…+e7), s2 = e1+e2, s3 = e2−e1, s_k = e_{k−1} − e_{k−2} (k = 4..8).
       s[0] = {1, -1, -1, -1, -1, -1, -1, 1};
@@ -262,12 +292,19 @@ double weyl_group_order(Family f, int d) {
   double factorial = 1;
   for (int k = 2; k <= d; ++k) factorial *= k;
   switch (f) {
-    case Family::A: return factorial * (d + 1);
-    case Family::B: case Family::C: return std::ldexp(factorial, d);
-    case Family::D: return std::ldexp(factorial, d - 1);
-    case Family::E: return d == 6 ? 51840.0 : d == 7 ? 2903040.0 : 696729600.0;
-    case Family::F: return 1152.0;
-    case Family::G: return 12.0;
+    case Family::A:
+      return factorial * (d + 1);
+    case Family::B:
+    case Family::C:
+      return std::ldexp(factorial, d);
+    case Family::D:
+      return std::ldexp(factorial, d - 1);
+    case Family::E:
+      return d == 6 ? 51840.0 : d == 7 ? 2903040.0 : 696729600.0;
+    case Family::F:
+      return 1152.0;
+    case Family::G:
+      return 12.0;
   }
   return 0;
 }

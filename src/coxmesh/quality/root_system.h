@@ -22,8 +22,7 @@ namespace coxmesh::quality {
 enum class Family { A, B, C, D, E, F, G };
 
 /// All families in order A..G.
-inline constexpr Family kAllFamilies[] = {Family::A, Family::B, Family::C, Family::D,
-                                          Family::E, Family::F, Family::G};
+inline constexpr Family kAllFamilies[] = {Family::A, Family::B, Family::C, Family::D, Family::E, Family::F, Family::G};
 
 /// Largest rank accepted for the infinite families (roots are generated exhaustively: 2d² of them).
 inline constexpr int kMaxRank = 64;

@@ -27,9 +27,15 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 
 LocalPcaOracle::LocalPcaOracle(const Triangulation& triangulation, std::shared_ptr<const SampleModel> model, int m,
                                double radius, FunctionPtr domain)
-    : t_(triangulation), model_(std::move(model)), domain_(std::move(domain)), d_(triangulation.dimension()),
-      k_(d_ - m), m_(m), radius2_(radius * radius) {
-  if (!model_ || model_->tree->dimension() != d_) throw InputError("the samples and the triangulation must live in the same R^d");
+    : t_(triangulation),
+      model_(std::move(model)),
+      domain_(std::move(domain)),
+      d_(triangulation.dimension()),
+      k_(d_ - m),
+      m_(m),
+      radius2_(radius * radius) {
+  if (!model_ || model_->tree->dimension() != d_)
+    throw InputError("the samples and the triangulation must live in the same R^d");
   if (m < 1 || m >= d_) throw InputError("the manifold dimension m must be between 1 and d − 1");
   if (!(radius > 0)) throw InputError("the neighbourhood radius must be positive");
   if (domain_ && (domain_->ambient_dimension() != d_ || domain_->codimension() != 1))
@@ -73,7 +79,7 @@ Intersection LocalPcaOracle::intersect(const Simplex& tau, double* point) {
       for (int c = 0; c <= r; ++c) cov(r, c) += (p[r] - mean[r]) * (p[c] - mean[c]);
   }
   Eigen::SelfAdjointEigenSolver<Square> eig(cov, Eigen::ComputeEigenvectors);  // reads the lower triangle
-  const double* q = tree.point(index_[0]);  // nearest first
+  const double* q = tree.point(index_[0]);                                     // nearest first
 
   // A = [1 … 1; F_τ(v_0) … F_τ(v_k)], F_τ(x) = Uᵀ(x − q); the first k eigenvectors span U. The
   // solution λ does not depend on the basis chosen for U, so the frames need no orientation.

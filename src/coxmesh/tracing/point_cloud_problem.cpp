@@ -135,8 +135,10 @@ PointCloudProblem make_point_cloud_problem(std::vector<double> samples, int d, i
   // sheets through them would be traced as extra components.
   std::vector<std::vector<std::uint32_t>> members(fr.components);
   for (std::size_t i = 0; i < n; ++i) {
-    if (fr.within_radius[i] >= m + 1) members[fr.component[i]].push_back(static_cast<std::uint32_t>(i));
-    else ++diag.isolated_samples;
+    if (fr.within_radius[i] >= m + 1)
+      members[fr.component[i]].push_back(static_cast<std::uint32_t>(i));
+    else
+      ++diag.isolated_samples;
   }
   for (const auto& component : members) {
     if (component.empty()) {

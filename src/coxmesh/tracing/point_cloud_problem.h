@@ -42,10 +42,10 @@ struct PointCloudDiagnostics {
   double spacing = 0;    ///< median distance from a sample to its nearest other sample
   double thickness = 0;  ///< median RMS distance of a neighbourhood from its tangent plane: noise (and curvature)
   double radius = 0, edge_length = 0, tube_radius = 0, blend_width = 0;
-  double longest_gap = 0;  ///< longest edge of a Euclidean minimum spanning forest of the non-isolated samples
+  double longest_gap = 0;        ///< longest edge of a Euclidean minimum spanning forest of the non-isolated samples
   double mean_neighbours = 0;    ///< samples per PCA neighbourhood
   std::uint32_t components = 0;  ///< connected components of the neighbour graph
-  std::size_t isolated_samples = 0;    ///< samples with at most m others within the radius: never seeds
+  std::size_t isolated_samples = 0;     ///< samples with at most m others within the radius: never seeds
   std::size_t unseeded_components = 0;  ///< components made only of isolated samples: not traced
   std::size_t graph_edges = 0, compared_edges = 0, frustrated_edges = 0;
   bool used_given_normals = false;

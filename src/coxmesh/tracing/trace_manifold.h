@@ -42,7 +42,7 @@ struct TraceResult {
   PackedKeyIndex boundary_simplices{1};             ///< S_∂: packed (k+1)-simplices
   UninitializedHugeVector<double> boundary_points;  ///< |S_∂| × d
   TraceStatus status = TraceStatus::complete;
-  std::string message;                              ///< why tracing stopped early (empty when complete)
+  std::string message;  ///< why tracing stopped early (empty when complete)
   std::uint64_t oracle_calls = 0, function_evaluations = 0;
   int manifold_dimension() const { return ambient_dimension - codimension; }
 };

@@ -111,10 +111,12 @@ void ParallelWalk::process_chunk(std::uint32_t chunk, std::uint32_t begin, std::
     while (const Simplex* cofacet = cofacets.next()) {
       const Simplex& mu = *cofacet;
       const std::size_t known = out.inside_arrivals.size();
-      const Found f = other_transverse_facet(*worker.oracle, pivots, tau, tau_key, s_.arrivals_[id], mu,
-                                             [&](const Simplex& s) { return classify_in_level(s, chunk, worker, out); });
+      const Found f =
+          other_transverse_facet(*worker.oracle, pivots, tau, tau_key, s_.arrivals_[id], mu,
+                                 [&](const Simplex& s) { return classify_in_level(s, chunk, worker, out); });
       if (f.kind == Kind::inside && out.inside_arrivals.size() > known)  // first found now, through μ
-        out.inside_arrivals.back() = arrival_code(mu, f.facet, out.inside_keys.data() + out.inside_keys.size() - words, d_);
+        out.inside_arrivals.back() =
+            arrival_code(mu, f.facet, out.inside_keys.data() + out.inside_keys.size() - words, d_);
       if (f.kind != Kind::outside) continue;
       // μ crosses the boundary (see SequentialWalk::add_boundary; duplicates are dropped by the merge)
       const double* p = s_.result_.points.data() + static_cast<std::size_t>(id) * d_;

@@ -44,9 +44,9 @@ class ParallelWalk {
   struct alignas(64) Worker {
     IntersectionOracle* oracle;
     PackedKeyIndex tested;
-    std::vector<std::uint32_t> payload;  // kMiss or index into data
+    std::vector<std::uint32_t> payload;    // kMiss or index into data
     std::vector<std::uint32_t> output_in;  // per tested simplex inside: the first chunk that output it
-    std::vector<double> data;            // (d + 1) per transverse simplex: point, D̂
+    std::vector<double> data;              // (d + 1) per transverse simplex: point, D̂
     std::uint64_t calls;
     // The simplices of S that a level's walk can meet: its own and the previous level's (a
     // neighbour of a simplex of level L is in level L − 1, L or L + 1). Two small indexes of
@@ -107,13 +107,13 @@ class ParallelWalk {
   // The chunks' outputs of the last two levels: the merge appends level L + 1 to S without copying
   // it, and the workers of level L + 1 copy each simplex in when they take its chunk (`fill`).
   std::vector<ChunkOutput> chunks_[2];
-  int current_ = 0;                          // which of chunks_ the level being walked writes
-  std::vector<std::uint64_t> sources_;       // per simplex of S from `pending_.first`: chunk << 32 | row
+  int current_ = 0;                                        // which of chunks_ the level being walked writes
+  std::vector<std::uint64_t> sources_;                     // per simplex of S from `pending_.first`: chunk << 32 | row
   std::pair<std::uint32_t, std::uint32_t> pending_{0, 0};  // ids of S appended and not copied in yet
   ChunkClaims claims_;
   std::pair<std::uint32_t, std::uint32_t> level_, previous_level_;  // ids of S
   std::vector<std::uint64_t> firsts_;  // the merge's hash table: tag << 32 | 1 + index into sources_
-  std::unique_ptr<WorkerPool> pool_;  // started by the first parallel level
+  std::unique_ptr<WorkerPool> pool_;   // started by the first parallel level
 };
 
 }  // namespace coxmesh::walk

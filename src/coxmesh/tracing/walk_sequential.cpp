@@ -10,7 +10,11 @@
 namespace coxmesh::walk {
 
 SequentialWalk::SequentialWalk(const Triangulation& t, IntersectionOracle& oracle, const TraceOptions& options)
-    : t_(t), oracle_(oracle), options_(options), d_(t.dimension()), k_(oracle.codimension()),
+    : t_(t),
+      oracle_(oracle),
+      options_(options),
+      d_(t.dimension()),
+      k_(oracle.codimension()),
       others_(packed_words(d_)) {
   result_.ambient_dimension = d_;
   result_.codimension = k_;

@@ -128,14 +128,22 @@ void rank_keys(const std::int32_t* key, int n, std::int32_t* rank) {
     rank_groups<padded_rows(D) / 4>(key, n, rank);
   } else {
     switch (padded_rows(n - 1) / 4) {
-      case 1: return rank_groups<1>(key, n, rank);
-      case 2: return rank_groups<2>(key, n, rank);
-      case 3: return rank_groups<3>(key, n, rank);
-      case 4: return rank_groups<4>(key, n, rank);
-      case 5: return rank_groups<5>(key, n, rank);
-      case 6: return rank_groups<6>(key, n, rank);
-      case 7: return rank_groups<7>(key, n, rank);
-      default: return rank_groups<8>(key, n, rank);
+      case 1:
+        return rank_groups<1>(key, n, rank);
+      case 2:
+        return rank_groups<2>(key, n, rank);
+      case 3:
+        return rank_groups<3>(key, n, rank);
+      case 4:
+        return rank_groups<4>(key, n, rank);
+      case 5:
+        return rank_groups<5>(key, n, rank);
+      case 6:
+        return rank_groups<6>(key, n, rank);
+      case 7:
+        return rank_groups<7>(key, n, rank);
+      default:
+        return rank_groups<8>(key, n, rank);
     }
   }
 }
@@ -163,8 +171,10 @@ void locate_fk(const double* z, int d_runtime, Simplex& s) {
                                           __builtin_convertvector(q1 * scale, V2i), 0, 1, 2, 3);
     store(key.data() + i, (q << 5) | V4i{31 - i, 30 - i, 29 - i, 28 - i});
     // y (0 from index d on); the last group would reach past y, into the block labels.
-    const V4i y = __builtin_shufflevector(__builtin_convertvector(f0, V2i), __builtin_convertvector(f1, V2i), 0, 1, 2, 3);
-    if (i + 4 <= kMaxDimension) store(s.y.data() + i, y);
+    const V4i y =
+        __builtin_shufflevector(__builtin_convertvector(f0, V2i), __builtin_convertvector(f1, V2i), 0, 1, 2, 3);
+    if (i + 4 <= kMaxDimension)
+      store(s.y.data() + i, y);
     else
       for (int l = 0; i + l < kMaxDimension; ++l) s.y[i + l] = y[l];
   }
@@ -231,32 +241,45 @@ Simplex locate_impl(const Triangulation& t, const double* padded_inverse, const 
 #else
 [[gnu::target_clones("avx2", "default"), gnu::flatten]]
 #endif
-Simplex locate_large(const Triangulation& t, const double* padded_inverse, const double* x) {
+Simplex
+locate_large(const Triangulation& t, const double* padded_inverse, const double* x) {
   return locate_impl<0>(t, padded_inverse, x);
 }
 
 }  // namespace
 
-void lattice_coordinates_kernel(const double* padded_inverse, const double* offset, int d, const double* x,
-                                double* z) {
+void lattice_coordinates_kernel(const double* padded_inverse, const double* offset, int d, const double* x, double* z) {
   lattice_kernel<0>(padded_inverse, offset, x, d, z);
 }
 
 Simplex locate_kernel(const Triangulation& t, const double* padded_inverse, const double* x) {
   switch (t.dimension()) {
-    case 1: return locate_impl<1>(t, padded_inverse, x);
-    case 2: return locate_impl<2>(t, padded_inverse, x);
-    case 3: return locate_impl<3>(t, padded_inverse, x);
-    case 4: return locate_impl<4>(t, padded_inverse, x);
-    case 5: return locate_impl<5>(t, padded_inverse, x);
-    case 6: return locate_impl<6>(t, padded_inverse, x);
-    case 7: return locate_impl<7>(t, padded_inverse, x);
-    case 8: return locate_impl<8>(t, padded_inverse, x);
-    case 9: return locate_impl<9>(t, padded_inverse, x);
-    case 10: return locate_impl<10>(t, padded_inverse, x);
-    case 11: return locate_impl<11>(t, padded_inverse, x);
-    case 12: return locate_impl<12>(t, padded_inverse, x);
-    default: return locate_large(t, padded_inverse, x);
+    case 1:
+      return locate_impl<1>(t, padded_inverse, x);
+    case 2:
+      return locate_impl<2>(t, padded_inverse, x);
+    case 3:
+      return locate_impl<3>(t, padded_inverse, x);
+    case 4:
+      return locate_impl<4>(t, padded_inverse, x);
+    case 5:
+      return locate_impl<5>(t, padded_inverse, x);
+    case 6:
+      return locate_impl<6>(t, padded_inverse, x);
+    case 7:
+      return locate_impl<7>(t, padded_inverse, x);
+    case 8:
+      return locate_impl<8>(t, padded_inverse, x);
+    case 9:
+      return locate_impl<9>(t, padded_inverse, x);
+    case 10:
+      return locate_impl<10>(t, padded_inverse, x);
+    case 11:
+      return locate_impl<11>(t, padded_inverse, x);
+    case 12:
+      return locate_impl<12>(t, padded_inverse, x);
+    default:
+      return locate_large(t, padded_inverse, x);
   }
 }
 

@@ -55,8 +55,7 @@ inline void barycentric_in_lattice(const Simplex& sigma, int d, const double* z,
 #if defined(COXMESH_HAS_LOCATE_KERNEL)
 /// The kernel: the same results. padded_inverse = Λ^{-1} padded to padded_rows(d) rows
 /// (column-major); z has room for padded_rows(d) values (the padding comes out 0).
-void lattice_coordinates_kernel(const double* padded_inverse, const double* offset, int d, const double* x,
-                                double* z);
+void lattice_coordinates_kernel(const double* padded_inverse, const double* offset, int d, const double* x, double* z);
 Simplex locate_kernel(const Triangulation& t, const double* padded_inverse, const double* x);
 #endif
 

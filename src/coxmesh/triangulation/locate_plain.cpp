@@ -38,8 +38,10 @@ Simplex locate_plain(const Triangulation& t, const double* x) {
     if (!(std::abs(z[i]) < kMaxLatticeCoordinate - 1)) throw_out_of_range(z.data(), d);
     double floor = std::floor(z[i]);
     frac[i] = z[i] - floor;
-    if (frac[i] <= kTieTolerance) frac[i] = 0;
-    else if (1 - frac[i] <= kTieTolerance) floor += 1, frac[i] = 0;
+    if (frac[i] <= kTieTolerance)
+      frac[i] = 0;
+    else if (1 - frac[i] <= kTieTolerance)
+      floor += 1, frac[i] = 0;
     s.y[i] = static_cast<std::int32_t>(floor);
   }
   // The indices 0..d by decreasing fractional part (equal ones by index), cut into blocks where

@@ -6,8 +6,8 @@
 #include <Eigen/QR>
 #include <Eigen/SVD>
 #include <algorithm>
-#include <cmath>
 #include <array>
+#include <cmath>
 #include <numbers>
 #include <random>
 #include <sstream>
@@ -185,8 +185,7 @@ void Triangulation::barycentric(const Simplex& sigma, const double* x, double* l
 
 double Triangulation::longest_edge() const {
   if (known_longest_edge_ > 0) return known_longest_edge_;
-  if (d_ > 24)
-    throw InputError("the longest edge of a general matrix is computed exhaustively, which needs d <= 24");
+  if (d_ > 24) throw InputError("the longest edge of a general matrix is computed exhaustively, which needs d <= 24");
   // Edge vectors of the d-simplices are Λ·e_A for the non-empty A ⊆ {0..d−1}; walk them in Gray order.
   Eigen::VectorXd v = Eigen::VectorXd::Zero(d_);
   std::vector<bool> in(d_, false);
@@ -194,8 +193,10 @@ double Triangulation::longest_edge() const {
   const std::uint64_t n = std::uint64_t{1} << d_;
   for (std::uint64_t t = 1; t < n; ++t) {
     const int bit = __builtin_ctzll(t);
-    if (in[bit]) v -= matrix_.col(bit);
-    else v += matrix_.col(bit);
+    if (in[bit])
+      v -= matrix_.col(bit);
+    else
+      v += matrix_.col(bit);
     in[bit] = !in[bit];
     best = std::max(best, v.squaredNorm());
   }

@@ -33,8 +33,8 @@ struct HugePageAllocator {
     const std::size_t bytes = n * sizeof(T);
     if (bytes < kPage) return static_cast<T*>(::operator new(bytes));
     const std::size_t rounded = round_up(bytes);  // (a partial last 2 MiB would get small pages)
-#if defined(__SANITIZE_ADDRESS__)  // keep AddressSanitizer's view of the block
-    void* p = ::operator new(rounded, std::align_val_t{kPage});
+#if defined(__SANITIZE_ADDRESS__)                 // keep AddressSanitizer's view of the block
+    void* p = ::operator new (rounded, std::align_val_t{kPage});
     std::fill_n(static_cast<char*>(p), rounded, 0);
 #else
     // Map 2 MiB more than needed, then unmap the ends so that the block is 2 MiB-aligned.
@@ -52,7 +52,7 @@ struct HugePageAllocator {
   void deallocate(T* p, std::size_t n) {
     if (n * sizeof(T) < kPage) return ::operator delete(p);
 #if defined(__SANITIZE_ADDRESS__)
-    ::operator delete(p, std::align_val_t{kPage});
+    ::operator delete (p, std::align_val_t{kPage});
 #else
     munmap(p, round_up(n * sizeof(T)));
 #endif

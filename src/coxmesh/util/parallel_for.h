@@ -32,7 +32,7 @@ class WorkerPool {
   explicit WorkerPool(int workers)
       : workers_(std::max(workers, 1)),
         spin_(workers_ <= static_cast<int>(std::thread::hardware_concurrency()) ? std::chrono::microseconds(200)
-                                                                                  : std::chrono::microseconds(0)) {
+                                                                                : std::chrono::microseconds(0)) {
     for (int w = 1; w < workers_; ++w) threads_.emplace_back([this, w] { serve(w); });
   }
   ~WorkerPool() {
