@@ -8,6 +8,7 @@
 #include "bindings.h"
 #include "coxmesh/io/polygons.h"
 #include "coxmesh/io/projection.h"
+#include "coxmesh/io/topology_json.h"
 #include "coxmesh/io/write_mesh.h"
 #include "mesh.h"
 
@@ -34,24 +35,9 @@ const CellLevel& level(const Mesh& m, int j, bool boundary) {
 }
 
 py::dict summary(const Mesh& m) {
-  const CellComplex& cc = m.cells;
-  const TopologyReport& t = m.topology;
-  py::dict j;
-  j["ambient_dimension"] = cc.ambient_dimension;
-  j["manifold_dimension"] = cc.manifold_dimension;
-  j["traced_simplices"] = cc.interior.empty() ? 0 : cc.interior[0].size();
-  j["boundary_simplices"] = cc.boundary.empty() ? 0 : cc.boundary[0].size();
-  j["cells"] = t.cells;
-  j["boundary_cells"] = t.boundary_cells;
-  j["closed"] = t.closed;
-  if (t.closed) {  // an open complex (a run stopped by its limit) has no topology to report
-    j["euler_characteristic"] = t.euler_characteristic;
-    j["betti"] = t.betti;
-    j["components"] = t.betti.empty() ? 0 : t.betti[0];
-  }
-  j["is_manifold"] = t.is_manifold;
-  if (!t.is_manifold) j["manifold_problem"] = t.manifold_problem;
-  j["cell_complex_bytes"] = cc.bytes();
+  // The library's topology keys (shared with the command line), then what this run adds.
+  py::dict j = py::module_::import("json").attr("loads")(
+      topology_json(m.cells, m.topology).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
   if (!m.preset.empty()) j["preset"] = m.preset;
   if (!m.function.empty()) j["function"] = m.function;
   j["function_evaluations"] = m.info.function_evaluations;

@@ -20,26 +20,6 @@ long long peak_memory_bytes() {
   return static_cast<long long>(usage.ru_maxrss) * 1024;
 }
 
-nlohmann::json topology_json(const CellComplex& cc, const TopologyReport& topo) {
-  nlohmann::json j;
-  j["ambient_dimension"] = cc.ambient_dimension;
-  j["manifold_dimension"] = cc.manifold_dimension;
-  j["traced_simplices"] = cc.interior.empty() ? 0 : cc.interior[0].size();
-  j["boundary_simplices"] = cc.boundary.empty() ? 0 : cc.boundary[0].size();
-  j["cells"] = topo.cells;
-  j["boundary_cells"] = topo.boundary_cells;
-  j["closed"] = topo.closed;
-  if (topo.closed) {  // the topology of an open complex would be wrong: none is reported
-    j["euler_characteristic"] = topo.euler_characteristic;
-    j["betti"] = topo.betti;
-    j["components"] = topo.betti.empty() ? 0 : topo.betti[0];
-  }
-  j["is_manifold"] = topo.is_manifold;
-  if (!topo.is_manifold) j["manifold_problem"] = topo.manifold_problem;
-  j["cell_complex_bytes"] = cc.bytes();
-  return j;
-}
-
 void print_topology(std::ostream& os, const CellComplex& cc, const TopologyReport& topo) {
   const std::size_t n = cc.interior.empty() ? 0 : cc.interior[0].size();
   const std::size_t nb = cc.boundary.empty() ? 0 : cc.boundary[0].size();

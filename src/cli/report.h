@@ -8,13 +8,9 @@
 
 #include "coxmesh/cell_complex/cell_complex.h"
 #include "coxmesh/cell_complex/topology.h"
+#include "coxmesh/io/topology_json.h"
 
 namespace coxmesh::cli {
-
-/// Keys ambient_dimension, manifold_dimension, traced_simplices (|S| = interior vertex cells),
-/// boundary_simplices (|S_∂| = boundary vertex cells), cells, boundary_cells, euler_characteristic,
-/// betti, components, is_manifold, manifold_problem (only when not a manifold), cell_complex_bytes.
-nlohmann::json topology_json(const CellComplex& cc, const TopologyReport& topo);
 
 /// The human lines "traced simplices", "cells by dimension", "Euler characteristic …, Betti
 /// numbers …", "components", "manifold check", each indented by two spaces.

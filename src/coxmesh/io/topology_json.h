@@ -1,0 +1,18 @@
+// The topology report as JSON, with the keys every front end shares (`coxmesh trace --json`,
+// `coxmesh check --json`, the Python package's summary()).
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include "coxmesh/cell_complex/cell_complex.h"
+#include "coxmesh/cell_complex/topology.h"
+
+namespace coxmesh {
+
+/// Keys ambient_dimension, manifold_dimension, traced_simplices (|S| = interior vertex cells),
+/// boundary_simplices (|S_∂| = boundary vertex cells), cells, boundary_cells, closed,
+/// euler_characteristic, betti and components (only for a closed complex: an open one has no
+/// topology to report), is_manifold, manifold_problem (only when not a manifold), cell_complex_bytes.
+nlohmann::json topology_json(const CellComplex& cc, const TopologyReport& topo);
+
+}  // namespace coxmesh
