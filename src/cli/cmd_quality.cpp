@@ -1,18 +1,17 @@
 // coxmesh quality: quality measures, Delaunay property and protection of the Coxeter triangulations of
 // every affine type (thesis Ch. 2), as a table, JSON, CSV, Markdown or an SVG plot against d.
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
 
 #include "commands.h"
 #include "common.h"
+#include "coxmesh/io/atomic_file.h"
 #include "coxmesh/quality/table_row.h"
+#include "coxmesh/util/parse_number.h"
 
 namespace coxmesh::cli {
 
@@ -41,15 +40,9 @@ std::optional<double> value(const Row& r, const std::string& key) {
 }
 
 int parse_int(const std::string& text, const std::string& what) {
-  std::size_t used = 0;
-  int v = 0;
-  try {
-    v = std::stoi(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (text.empty() || used != text.size()) throw InputError(what + ": '" + text + "' is not an integer");
-  return v;
+  const std::optional<std::uint64_t> v = parse_unsigned(text);
+  if (!v || *v > 1000) throw InputError(what + ": '" + printable(text) + "' is not an integer from 0 to 1000");
+  return static_cast<int>(*v);
 }
 
 // "D" or "D..D2".
@@ -296,30 +289,6 @@ std::string svg_plot(const std::vector<Row>& rows, const std::string& measure, b
   return s.str();
 }
 
-// Writes `content` to a temporary file in the target's directory, then renames it over the target.
-void write_atomically(const std::string& path, const std::string& content) {
-  namespace fs = std::filesystem;
-  const fs::path target(path);
-  const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-  const fs::path tmp = dir / ("." + target.filename().string() + ".tmp" + std::to_string(::getpid()));
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    if (!out) throw std::runtime_error("cannot write '" + path + "' (cannot create a file in its directory)");
-    out << content;
-    out.close();
-    if (!out) {
-      fs::remove(tmp);
-      throw std::runtime_error("cannot write '" + path + "'");
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, target, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw std::runtime_error("cannot write '" + path + "': " + ec.message());
-  }
-}
-
 bool ends_with_svg(std::string name) {
   std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
   return name.size() > 4 && name.ends_with(".svg");
@@ -347,7 +316,8 @@ void run(const QualityOptions& o) {
         if (auto v = value(r, o.measure); v && *v > 0) lo = std::min(lo, *v), hi = std::max(hi, *v);
       log_scale = hi > 0 && hi / lo > 50;
     }
-    write_atomically(o.plot, svg_plot(rows, o.measure, log_scale));
+    const std::string svg = svg_plot(rows, o.measure, log_scale);
+    write_file_atomically(o.plot, [&svg](std::ostream& out) { out << svg; });
     if (!o.json && !o.csv && !o.markdown) return;
   }
   if (o.json)
