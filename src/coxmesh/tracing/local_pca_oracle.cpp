@@ -48,8 +48,10 @@ LocalPcaOracle::LocalPcaOracle(const Triangulation& triangulation, std::shared_p
 
 // GCC 12 reports Eigen's eigenvector storage (fixed maximum size, dynamic size) as maybe
 // uninitialised after the solver has written it: a false positive of the inlined solver.
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 Intersection LocalPcaOracle::intersect(const Simplex& tau, double* point) {
   ++evaluations_;
   const SampleTree& tree = *model_->tree;
@@ -110,7 +112,9 @@ Intersection LocalPcaOracle::intersect(const Simplex& tau, double* point) {
   if (domain_) domain_->evaluate(point, &out.domain);
   return out;
 }
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop
+#endif
 
 std::size_t count_defects(const TraceResult& traced, IntersectionOracle& oracle) {
   const int d = traced.ambient_dimension, k = traced.codimension;
