@@ -84,8 +84,8 @@ SampleFrames estimate_frames(const SampleTree& tree, int m, const FrameOptions& 
   std::vector<Edge> edges;
   edges.reserve(n * options.graph_neighbours);
   std::size_t total_neighbours = 0;
-  Square cov(d, d);
-  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMax, 1> mean(d);
+  LocalSquare cov(d, d);
+  LocalVector mean(d);
   for (std::size_t i = 0; i < n; ++i) {
     const double* p = tree.point(i);
     int count = tree.nearest_within(p, options.radius * options.radius, cap, nb.data(), nb_d2.data());
@@ -94,16 +94,7 @@ SampleFrames estimate_frames(const SampleTree& tree, int m, const FrameOptions& 
       count = tree.nearest_within(p, std::numeric_limits<double>::infinity(), options.min_neighbours + 1, nb.data(),
                                   nb_d2.data());
     total_neighbours += count - 1;
-    mean.setZero();
-    for (int j = 0; j < count; ++j)
-      for (int t = 0; t < d; ++t) mean[t] += tree.point(nb[j])[t];
-    mean /= count;
-    cov.setZero();
-    for (int j = 0; j < count; ++j) {
-      const double* q = tree.point(nb[j]);
-      for (int r = 0; r < d; ++r)
-        for (int c = 0; c <= r; ++c) cov(r, c) += (q[r] - mean[r]) * (q[c] - mean[c]);
-    }
+    local_scatter(tree, nb.data(), count, mean, cov);
     Eigen::SelfAdjointEigenSolver<Square> eig(cov, Eigen::ComputeEigenvectors);  // reads the lower triangle
     double normal_part = 0;
     for (int j = 0; j < k; ++j) {  // eigenvalues ascend: the first k span the normal space

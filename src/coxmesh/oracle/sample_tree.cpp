@@ -117,4 +117,19 @@ int SampleTree::nearest_within(const double* x, double radius2, int capacity, st
   return index_->search(x, result);
 }
 
+void local_scatter(const SampleTree& tree, const std::uint32_t* ids, int count, LocalVector& mean,
+                   LocalSquare& scatter) {
+  const int d = tree.dimension();
+  mean.setZero(d);
+  for (int j = 0; j < count; ++j)
+    for (int t = 0; t < d; ++t) mean[t] += tree.point(ids[j])[t];
+  mean /= count;
+  scatter.setZero(d, d);
+  for (int j = 0; j < count; ++j) {
+    const double* q = tree.point(ids[j]);
+    for (int r = 0; r < d; ++r)
+      for (int c = 0; c <= r; ++c) scatter(r, c) += (q[r] - mean[r]) * (q[c] - mean[c]);
+  }
+}
+
 }  // namespace coxmesh

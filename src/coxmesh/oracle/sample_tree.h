@@ -2,9 +2,12 @@
 // sample of a point, and the nearest samples within a radius. Queries allocate nothing (d ≤ 10).
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <memory>
 #include <vector>
+
+#include "coxmesh/lattice/simplex.h"
 
 namespace coxmesh {
 
@@ -38,5 +41,14 @@ class SampleTree {
   int d_;
   std::unique_ptr<const Index> index_;
 };
+
+/// Fixed-capacity vectors and matrices for local statistics (no heap for d ≤ 31).
+using LocalVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxDimension, 1>;
+using LocalSquare = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxDimension, kMaxDimension>;
+
+/// The centroid of the samples ids[0..count) (count ≥ 1) and the lower triangle of their scatter
+/// matrix Σ (p − mean)(p − mean)ᵀ, for local PCA (SelfAdjointEigenSolver reads the lower triangle).
+void local_scatter(const SampleTree& tree, const std::uint32_t* ids, int count, LocalVector& mean,
+                   LocalSquare& scatter);
 
 }  // namespace coxmesh

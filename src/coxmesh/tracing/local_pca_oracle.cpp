@@ -68,18 +68,9 @@ Intersection LocalPcaOracle::intersect(const Simplex& tau, double* point) {
   int count = tree.nearest_within(b, radius2_, static_cast<int>(index_.size()), index_.data(), distance2_.data());
   if (count < m_ + 2)
     count = tree.nearest_within(b, std::numeric_limits<double>::infinity(), m_ + 2, index_.data(), distance2_.data());
-  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMax, 1> mean(d);
-  mean.setZero();
-  for (int i = 0; i < count; ++i)
-    for (int t = 0; t < d; ++t) mean[t] += tree.point(index_[i])[t];
-  mean /= count;
-  Square cov(d, d);
-  cov.setZero();
-  for (int i = 0; i < count; ++i) {
-    const double* p = tree.point(index_[i]);
-    for (int r = 0; r < d; ++r)
-      for (int c = 0; c <= r; ++c) cov(r, c) += (p[r] - mean[r]) * (p[c] - mean[c]);
-  }
+  LocalVector mean(d);
+  LocalSquare cov(d, d);
+  local_scatter(tree, index_.data(), count, mean, cov);
   Eigen::SelfAdjointEigenSolver<Square> eig(cov, Eigen::ComputeEigenvectors);  // reads the lower triangle
   const double* q = tree.point(index_[0]);                                     // nearest first
 
