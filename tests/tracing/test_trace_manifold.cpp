@@ -8,6 +8,7 @@
 #include <mutex>
 #include <set>
 
+#include "coxmesh/cell_complex/betti.h"
 #include "coxmesh/cell_complex/cell_complex.h"
 #include "coxmesh/cell_complex/topology.h"
 #include "coxmesh/lattice/cofaces.h"
@@ -40,7 +41,9 @@ TopologyReport run(const Case& c, TraceResult* out = nullptr) {
     out->points = r.points;
   }
   CellComplex cc = build_cell_complex(std::move(r));
-  return analyze_topology(cc);
+  TopologyReport topology = analyze_topology(cc);
+  EXPECT_EQ(topology.betti, betti_numbers_by_reduction(cc)) << c.name << ": the fast Betti numbers differ";
+  return topology;
 }
 
 Eigen::VectorXd offset(int d, double s) {

@@ -1,11 +1,7 @@
 #include "coxmesh/cell_complex/topology.h"
 
-#include <phat/algorithms/twist_reduction.h>
-#include <phat/boundary_matrix.h>
-#include <phat/compute_persistence_pairs.h>
-#include <phat/persistence_pairs.h>
-#include <phat/representations/full_pivot_column.h>
-#include <algorithm>
+#include "coxmesh/cell_complex/betti.h"
+#include "coxmesh/cell_complex/global_cells.h"
 
 namespace coxmesh {
 
@@ -18,64 +14,34 @@ std::vector<std::uint32_t> coface_counts(const CellLevel& lower, const CellLevel
   return count;
 }
 
-// The cells of dimension j of both kinds, numbered one after the other: interior cells first.
-struct GlobalIds {
-  std::vector<std::size_t> interior, boundary;  // first global id of each level
-  std::size_t count = 0;
-  explicit GlobalIds(const CellComplex& cc) {
-    const int m = cc.manifold_dimension;
-    for (int j = 0; j <= m; ++j) {
-      interior.push_back(count);
-      count += cc.interior[j].size();
-      boundary.push_back(count);
-      if (j < static_cast<int>(cc.boundary.size())) count += cc.boundary[j].size();
-    }
-  }
-};
-
-// Appends the global ids of the facets of cell c of level j (interior or boundary).
-void append_facets(const CellComplex& cc, const GlobalIds& ids, bool boundary, int j, std::uint32_t c,
-                   std::vector<std::size_t>& out) {
-  const CellLevel& level = boundary ? cc.boundary[j] : cc.interior[j];
-  const std::size_t base = boundary ? ids.boundary[j - 1] : ids.interior[j - 1];
-  for (std::uint32_t f : level.facets(c)) out.push_back(base + f);
-  if (!boundary && !level.boundary_facet.empty() && level.boundary_facet[c] != CellLevel::kNone)
-    out.push_back(ids.boundary[j - 1] + level.boundary_facet[c]);
-}
-
 // A complex whose Betti numbers mean something: every edge cell has two end points and the
 // boundary of the boundary of every cell vanishes over Z/2 (each ridge of a polytope lies in an even
 // number of its facets). A walk cut short leaves open cells at its front (an edge with one end);
 // their homology would be meaningless (e.g. no component at all), so it is not computed.
 std::string check_closed(const CellComplex& cc) {
-  const GlobalIds ids(cc);
-  std::vector<std::size_t> facets, ridges;
+  const GlobalCells cells(cc);
+  std::vector<std::uint8_t> odd(cells.count(), 0);  // per ridge: parity of its count so far
+  std::vector<std::size_t> ridges;
   for (int kind = 0; kind < 2; ++kind) {
     const auto& levels = kind ? cc.boundary : cc.interior;
     for (int j = 1; j < static_cast<int>(levels.size()); ++j)
       for (std::uint32_t c = 0; c < levels[j].size(); ++c) {
-        facets.clear();
-        append_facets(cc, ids, kind == 1, j, c, facets);
         if (j == 1) {
-          if (facets.size() != 2 || facets[0] == facets[1])
-            return std::string(kind ? "a boundary" : "an") + " edge cell has " + std::to_string(facets.size()) +
-                   " end points";
+          std::size_t ends[2] = {0, 0}, n = 0;
+          cells.for_each_facet(1, kind == 1, c, [&](std::size_t v) { ends[n++ % 2] = v; });
+          if (n != 2 || ends[0] == ends[1])
+            return std::string(kind ? "a boundary" : "an") + " edge cell has " + std::to_string(n) + " end points";
           continue;
         }
         ridges.clear();
-        for (std::size_t g : facets) {
-          const bool on_boundary = g >= ids.boundary[j - 1];
-          const std::size_t local = g - (on_boundary ? ids.boundary[j - 1] : ids.interior[j - 1]);
-          append_facets(cc, ids, on_boundary, j - 1, static_cast<std::uint32_t>(local), ridges);
-        }
-        std::sort(ridges.begin(), ridges.end());
-        for (std::size_t i = 0; i < ridges.size();) {
-          std::size_t e = i;
-          while (e < ridges.size() && ridges[e] == ridges[i]) ++e;
-          if ((e - i) % 2)
-            return "a " + std::to_string(j) + "-cell is not closed (a face of its boundary is not shared)";
-          i = e;
-        }
+        cells.for_each_facet(j, kind == 1, c, [&](std::size_t f) {
+          cells.for_each_facet(f, [&](std::size_t r) {
+            if ((odd[r] ^= 1)) ridges.push_back(r);
+          });
+        });
+        bool closed = true;
+        for (std::size_t r : ridges) closed &= odd[r] == 0, odd[r] = 0;
+        if (!closed) return "a " + std::to_string(j) + "-cell is not closed (a face of its boundary is not shared)";
       }
   }
   return "";
@@ -105,55 +71,6 @@ std::string check_manifold(const CellComplex& cc) {
   return "";
 }
 
-std::vector<std::size_t> betti_numbers(const CellComplex& cc) {
-  const int m = cc.manifold_dimension;
-  // Global order: by dimension; within dimension j, interior cells then boundary cells.
-  const GlobalIds ids(cc);
-  const std::vector<std::size_t>& in_base = ids.interior;
-  const std::vector<std::size_t>& bd_base = ids.boundary;
-  const std::size_t n = ids.count;
-  // full_pivot_column: bit_tree_pivot_column negates INT64_MIN, which UBSan rejects.
-  phat::boundary_matrix<phat::full_pivot_column> matrix;
-  matrix.set_num_cols(static_cast<phat::index>(n));
-  std::vector<phat::index> col;
-  std::vector<int> dim_of(n);
-  for (int j = 0; j <= m; ++j) {
-    const CellLevel& li = cc.interior[j];
-    for (std::uint32_t c = 0; c < li.size(); ++c) {
-      col.clear();
-      for (std::uint32_t f : li.facets(c)) col.push_back(static_cast<phat::index>(in_base[j - 1] + f));
-      if (!li.boundary_facet.empty() && li.boundary_facet[c] != CellLevel::kNone)
-        col.push_back(static_cast<phat::index>(bd_base[j - 1] + li.boundary_facet[c]));
-      std::sort(col.begin(), col.end());
-      const std::size_t id = in_base[j] + c;
-      matrix.set_col(static_cast<phat::index>(id), col);
-      matrix.set_dim(static_cast<phat::index>(id), static_cast<phat::dimension>(j));
-      dim_of[id] = j;
-    }
-    if (j >= static_cast<int>(cc.boundary.size())) continue;
-    const CellLevel& lb = cc.boundary[j];
-    for (std::uint32_t c = 0; c < lb.size(); ++c) {
-      col.clear();
-      for (std::uint32_t f : lb.facets(c)) col.push_back(static_cast<phat::index>(bd_base[j - 1] + f));
-      std::sort(col.begin(), col.end());
-      const std::size_t id = bd_base[j] + c;
-      matrix.set_col(static_cast<phat::index>(id), col);
-      matrix.set_dim(static_cast<phat::index>(id), static_cast<phat::dimension>(j));
-      dim_of[id] = j;
-    }
-  }
-  phat::persistence_pairs pairs;
-  phat::compute_persistence_pairs<phat::twist_reduction>(pairs, matrix);
-  std::vector<std::size_t> betti(m + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) ++betti[dim_of[i]];
-  for (phat::index p = 0; p < pairs.get_num_pairs(); ++p) {
-    const auto [birth, death] = pairs.get_pair(p);
-    --betti[dim_of[birth]];
-    --betti[dim_of[death]];
-  }
-  return betti;
-}
-
 }  // namespace
 
 TopologyReport analyze_topology(const CellComplex& cc, bool compute_betti) {
@@ -175,7 +92,7 @@ TopologyReport analyze_topology(const CellComplex& cc, bool compute_betti) {
   else
     r.closed = true, r.manifold_problem = check_manifold(cc);
   r.is_manifold = r.manifold_problem.empty();
-  if (compute_betti && r.closed) r.betti = betti_numbers(cc);
+  if (compute_betti && r.closed) r.betti = betti_numbers(cc, r.is_manifold);
   return r;
 }
 

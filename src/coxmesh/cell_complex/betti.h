@@ -1,0 +1,27 @@
+// Z/2 Betti numbers of a closed cell complex (every cell's boundary is a cycle): the reference
+// reduction and the fast variant that the reports use; tests check that they agree.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "coxmesh/cell_complex/cell_complex.h"
+
+namespace coxmesh {
+
+/// β_0..β_m by column reduction (PHAT, twist) of the boundary matrix of all cells ordered by
+/// dimension: the reference, whose time and memory grow with the number of cells. With `keep`
+/// (per cell in the numbering of GlobalCells): of the matrix restricted to the kept cells, which
+/// must be a chain complex (∂∂ = 0), e.g. what collapses and coreductions leave.
+std::vector<std::size_t> betti_numbers_by_reduction(const CellComplex& cc, std::span<const std::uint8_t> keep = {});
+
+/// The same numbers, first shrinking the complex by collapses (a cell in exactly one remaining
+/// cell is removed with it) and coreductions (a cell with exactly one remaining facet is removed
+/// with it), which keep the homology, so that the reduction sees only the few cells left: for the
+/// manifolds traced here about as many as the sum of the Betti numbers. They start from cells
+/// whose classes are known: one vertex per component and, if `manifold` (the complex passed the
+/// manifold check), one top cell per component without boundary. O(incidences) before the reduction.
+std::vector<std::size_t> betti_numbers(const CellComplex& cc, bool manifold);
+
+}  // namespace coxmesh

@@ -1,0 +1,167 @@
+// Z/2 Betti numbers after collapses and coreductions: the reduction runs on what is left.
+//
+// Both moves delete a pair of cells (a, b), a a facet of b, from the chain complex: a collapse when
+// a lies in no other remaining cell, a coreduction (Mrozek and Batko, "Coreduction homology
+// algorithm", 2009) when b has no other remaining facet. Either is the elimination of the pivot
+// (a, b) of the boundary matrix, which over Z/2 changes no other entry, so homology is kept. What
+// remains need not be a subcomplex, only a chain complex: the boundary matrix restricted to it.
+#include <numeric>
+
+#include "coxmesh/cell_complex/betti.h"
+#include "coxmesh/cell_complex/global_cells.h"
+
+namespace coxmesh {
+
+namespace {
+
+// Components of the vertex graph (interior and boundary edges): union–find with path halving.
+struct Components {
+  std::vector<std::uint32_t> parent;
+  explicit Components(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
+  std::uint32_t find(std::uint32_t v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  }
+  void join(std::uint32_t a, std::uint32_t b) { parent[find(a)] = find(b); }
+};
+
+constexpr std::uint32_t kRemoved = 0xFFFFFFFFu;
+
+// Per remaining cell: how many remaining facets and cofaces it has, and the xor of their ids
+// (relative to the first id of their dimension), which is the id of the one left when a count is 1.
+class Reducer {
+ public:
+  explicit Reducer(const GlobalCells& c) : cells_(c), cell_(c.count(), Counts{}) {
+    const std::size_t n = c.count();
+    const int m = c.manifold_dimension();
+    for (int j = 1; j <= m; ++j)
+      for (std::size_t g = c.start(j, false); g < c.start(j + 1, false); ++g)
+        c.for_each_facet(g, [&](std::size_t f) {
+          ++cell_[g].down, ++cell_[f].up;
+          cell_[g].xdown ^= relative(f, j - 1), cell_[f].xup ^= relative(g, j);
+        });
+    // The cofaces of each cell, as CSR (the facets are the complex's own lists).
+    coface_start_.assign(n + 1, 0);
+    for (std::size_t g = 0; g < n; ++g) coface_start_[g + 1] = coface_start_[g] + cell_[g].up;
+    coface_ids_.resize(coface_start_[n]);
+    std::vector<std::uint64_t> next(coface_start_.begin(), coface_start_.end() - 1);
+    for (int j = 1; j <= m; ++j)
+      for (std::size_t g = c.start(j, false); g < c.start(j + 1, false); ++g)
+        c.for_each_facet(g, [&](std::size_t f) { coface_ids_[next[f]++] = relative(g, j); });
+    for (std::size_t g = 0; g < n; ++g)
+      if (cell_[g].up == 1 || cell_[g].down == 1) pending_.push_back(g);
+  }
+
+  bool removed(std::size_t g) const { return cell_[g].up == kRemoved; }
+
+  // Removes cell g (a cell whose homology class is known, or one of a pair).
+  void remove(std::size_t g) {
+    const int j = cells_.dimension(g);
+    cell_[g].up = kRemoved;
+    if (j > 0)
+      cells_.for_each_facet(g, [&](std::size_t f) {
+        if (removed(f)) return;
+        cell_[f].xup ^= relative(g, j);
+        if (--cell_[f].up == 1) pending_.push_back(f);
+      });
+    if (j < cells_.manifold_dimension()) {
+      const std::size_t first = cells_.start(j + 1, false);
+      for (std::uint64_t i = coface_start_[g]; i < coface_start_[g + 1]; ++i) {
+        const std::size_t c = first + coface_ids_[i];
+        if (removed(c)) continue;
+        cell_[c].xdown ^= relative(g, j);
+        if (--cell_[c].down == 1) pending_.push_back(c);
+      }
+    }
+  }
+
+  // Collapses and coreduces while a cell has exactly one remaining coface or facet.
+  void reduce() {
+    for (std::size_t head = 0; head < pending_.size(); ++head) {
+      if (head >= kCompactAt && 2 * head >= pending_.size()) {  // (keeps the queue short)
+        pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(head));
+        head = 0;
+      }
+      const std::size_t a = pending_[head];
+      if (removed(a)) continue;
+      const int j = cells_.dimension(a);
+      std::size_t b;
+      if (cell_[a].down == 1)  // (coreductions first: collapses alone stall on 3-manifolds)
+        b = cells_.start(j - 1, false) + cell_[a].xdown;
+      else if (cell_[a].up == 1)
+        b = cells_.start(j + 1, false) + cell_[a].xup;
+      else
+        continue;
+      remove(a);
+      remove(b);
+    }
+  }
+
+ private:
+  std::uint32_t relative(std::size_t g, int j) const { return static_cast<std::uint32_t>(g - cells_.start(j, false)); }
+
+  const GlobalCells& cells_;
+  struct Counts {
+    std::uint32_t down = 0, up = 0, xdown = 0, xup = 0;
+  };
+  static constexpr std::size_t kCompactAt = 1 << 16;
+  std::vector<Counts> cell_;  // (one cache line holds all four)
+  std::vector<std::uint64_t> coface_start_;
+  std::vector<std::uint32_t> coface_ids_;  // relative to the first cell of the dimension above
+  std::vector<std::size_t> pending_;       // FIFO of cells whose count became 1 (the order matters:
+                                           // first in, first out leaves far fewer cells than a stack)
+};
+
+}  // namespace
+
+std::vector<std::size_t> betti_numbers(const CellComplex& cc, bool manifold) {
+  const GlobalCells cells(cc);
+  const int m = cc.manifold_dimension;
+  if (m == 0) return {cells.count()};
+  // Components of the vertex graph.
+  const std::size_t vertices = cells.start(1, false), boundary_vertices = cells.start(0, true);
+  Components components(vertices);
+  for (std::size_t g = cells.start(1, false); g < cells.start(2, false); ++g) {
+    std::uint32_t ends[2] = {0, 0}, n = 0;
+    cells.for_each_facet(g, [&](std::size_t v) { ends[n++ & 1] = static_cast<std::uint32_t>(v); });
+    components.join(ends[0], ends[1]);  // (closed complex: edge cells have two ends)
+  }
+  Reducer reducer(cells);
+  std::vector<std::size_t> known(m + 1, 0);  // classes of the cells removed on their own
+  // One vertex per component: a 0-cycle that no chain bounds (removing it leaves the reduced homology).
+  std::vector<std::uint8_t> seen(vertices, 0);
+  for (std::size_t v = 0; v < vertices; ++v)
+    if (const std::uint32_t root = components.find(static_cast<std::uint32_t>(v)); !seen[root]) {
+      seen[root] = 1;
+      reducer.remove(v);
+      ++known[0];
+    }
+  if (manifold) {
+    // One top cell of each component without boundary cells: such a component is a closed
+    // manifold (every (m−1)-cell lies in two m-cells), so over Z/2 the sum of its top cells is a
+    // cycle through that cell, and removing it lowers β_m by one and changes nothing else.
+    std::fill(seen.begin(), seen.end(), 0);  // per root: has boundary, or a top cell removed
+    for (std::size_t v = boundary_vertices; v < vertices; ++v) seen[components.find(static_cast<std::uint32_t>(v))] = 1;
+    const CellLevel& top = cc.interior[m];
+    for (std::uint32_t c = 0; c < top.size(); ++c) {
+      std::uint32_t v = c;  // descend to a vertex of c through first facets
+      for (int j = m; j > 0; --j) {
+        COXMESH_ASSERT(!cc.interior[j].facets(v).empty());  // (closed: an interior facet, at least)
+        v = cc.interior[j].facets(v)[0];
+      }
+      if (const std::uint32_t root = components.find(v); !seen[root]) {
+        seen[root] = 1;
+        reducer.remove(cells.start(m, false) + c);
+        ++known[m];
+      }
+    }
+  }
+  reducer.reduce();
+  std::vector<std::uint8_t> keep(cells.count());
+  for (std::size_t g = 0; g < keep.size(); ++g) keep[g] = !reducer.removed(g);
+  std::vector<std::size_t> betti = betti_numbers_by_reduction(cc, keep);
+  for (int j = 0; j <= m; ++j) betti[j] += known[j];
+  return betti;
+}
+
+}  // namespace coxmesh
