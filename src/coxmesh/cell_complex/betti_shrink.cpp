@@ -112,50 +112,69 @@ class Reducer {
                                            // first in, first out leaves far fewer cells than a stack)
 };
 
+// The top cells of a manifold joined across interior (m−1)-cells (two each): one cell of each
+// group that has no boundary facet. The sum of such a group's cells is a Z/2 cycle (a closed
+// pseudo-manifold), so these are the classes of H_m.
+std::vector<std::uint32_t> closed_top_pieces(const CellComplex& cc) {
+  const int m = cc.manifold_dimension;
+  const CellLevel& top = cc.interior[m];
+  Components pieces(top.size());
+  std::vector<std::uint32_t> first(cc.interior[m - 1].size(), CellLevel::kNone);
+  for (std::uint32_t c = 0; c < top.size(); ++c)
+    for (std::uint32_t f : top.facets(c))
+      if (first[f] == CellLevel::kNone)
+        first[f] = c;
+      else
+        pieces.join(first[f], c);
+  std::vector<std::uint8_t> open(top.size(), 0);
+  if (!top.boundary_facet.empty())
+    for (std::uint32_t c = 0; c < top.size(); ++c)
+      if (top.boundary_facet[c] != CellLevel::kNone) open[pieces.find(c)] = 1;
+  std::vector<std::uint32_t> closed;
+  for (std::uint32_t c = 0; c < top.size(); ++c)
+    if (pieces.find(c) == c && !open[c]) closed.push_back(c);
+  return closed;
+}
+
 }  // namespace
 
 std::vector<std::size_t> betti_numbers(const CellComplex& cc, bool manifold) {
   const GlobalCells cells(cc);
   const int m = cc.manifold_dimension;
   if (m == 0) return {cells.count()};
-  // Components of the vertex graph.
-  const std::size_t vertices = cells.start(1, false), boundary_vertices = cells.start(0, true);
+  // β_0: the components of the vertex graph.
+  const std::size_t vertices = cells.start(1, false);
   Components components(vertices);
   for (std::size_t g = cells.start(1, false); g < cells.start(2, false); ++g) {
     std::uint32_t ends[2] = {0, 0}, n = 0;
     cells.for_each_facet(g, [&](std::size_t v) { ends[n++ & 1] = static_cast<std::uint32_t>(v); });
     components.join(ends[0], ends[1]);  // (closed complex: edge cells have two ends)
   }
-  Reducer reducer(cells);
-  std::vector<std::size_t> known(m + 1, 0);  // classes of the cells removed on their own
-  // One vertex per component: a 0-cycle that no chain bounds (removing it leaves the reduced homology).
-  std::vector<std::uint8_t> seen(vertices, 0);
-  for (std::size_t v = 0; v < vertices; ++v)
-    if (const std::uint32_t root = components.find(static_cast<std::uint32_t>(v)); !seen[root]) {
-      seen[root] = 1;
-      reducer.remove(v);
-      ++known[0];
-    }
-  if (manifold) {
-    // One top cell of each component without boundary cells: such a component is a closed
-    // manifold (every (m−1)-cell lies in two m-cells), so over Z/2 the sum of its top cells is a
-    // cycle through that cell, and removing it lowers β_m by one and changes nothing else.
-    std::fill(seen.begin(), seen.end(), 0);  // per root: has boundary, or a top cell removed
-    for (std::size_t v = boundary_vertices; v < vertices; ++v) seen[components.find(static_cast<std::uint32_t>(v))] = 1;
-    const CellLevel& top = cc.interior[m];
-    for (std::uint32_t c = 0; c < top.size(); ++c) {
-      std::uint32_t v = c;  // descend to a vertex of c through first facets
-      for (int j = m; j > 0; --j) {
-        COXMESH_ASSERT(!cc.interior[j].facets(v).empty());  // (closed: an interior facet, at least)
-        v = cc.interior[j].facets(v)[0];
-      }
-      if (const std::uint32_t root = components.find(v); !seen[root]) {
-        seen[root] = 1;
-        reducer.remove(cells.start(m, false) + c);
-        ++known[m];
-      }
-    }
+  std::vector<std::uint32_t> component_vertex;
+  for (std::uint32_t v = 0; v < vertices; ++v)
+    if (components.find(v) == v) component_vertex.push_back(v);
+  const std::vector<std::uint32_t> closed_pieces = manifold ? closed_top_pieces(cc) : std::vector<std::uint32_t>{};
+  if (manifold && m <= 2) {  // β_0 and β_m known: the Euler characteristic gives β_1
+    long long euler = 0;
+    for (int j = 0; j <= m; ++j)
+      euler += (j % 2 ? -1LL : 1LL) * static_cast<long long>(cells.start(j + 1, false) - cells.start(j, false));
+    const auto b0 = static_cast<long long>(component_vertex.size());
+    const auto bm = static_cast<long long>(closed_pieces.size());
+    const long long b1 = m == 1 ? b0 - euler : b0 + bm - euler;
+    COXMESH_ASSERT(b1 >= 0 && (m == 2 || b1 == bm));
+    std::vector<std::size_t> betti = {static_cast<std::size_t>(b0), static_cast<std::size_t>(b1)};
+    if (m == 2) betti.push_back(static_cast<std::size_t>(bm));
+    return betti;
   }
+  // Otherwise the deletions start from these cells, whose classes are known: one vertex per
+  // component (a 0-cycle that no chain bounds) and, for a manifold, one top cell of each closed
+  // piece (removing it lowers β_m by one and changes nothing else).
+  Reducer reducer(cells);
+  std::vector<std::size_t> known(m + 1, 0);
+  for (std::uint32_t v : component_vertex) reducer.remove(v);
+  for (std::uint32_t c : closed_pieces) reducer.remove(cells.start(m, false) + c);
+  known[0] = component_vertex.size();
+  known[m] += closed_pieces.size();
   reducer.reduce();
   std::vector<std::uint8_t> keep(cells.count());
   for (std::size_t g = 0; g < keep.size(); ++g) keep[g] = !reducer.removed(g);

@@ -18,8 +18,8 @@ struct TopologyReport {
   std::string manifold_problem;  ///< the first violation found (empty if a manifold)
 };
 
-/// Euler characteristic and counts are O(cells); Betti numbers by Z/2 column reduction (PHAT,
-/// twist reduction) of the boundary matrix of all cells ordered by dimension, only for a closed
+/// Euler characteristic and counts are O(cells); Z/2 Betti numbers (betti.h: collapses and
+/// coreductions, then a reduction of what is left) only for a closed
 /// complex (a walk stopped by a limit leaves open cells at its front). The manifold check:
 /// every interior 1-cell has 2 end points (interior or boundary vertices), every interior
 /// (m−1)-cell lies in exactly 2 m-cells, every boundary (m−2)-cell in exactly 2 boundary

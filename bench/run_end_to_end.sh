@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# What a user of `coxmesh trace` waits for: each case in a fresh process, one thread by default,
+# with its phases (trace, cell complex, topology; "rest" is the whole command minus those three:
+# start-up, seeds and writing the file) and its peak memory. Fastest of R runs. Builds nothing.
+#
+#   bench/run_end_to_end.sh [path/to/coxmesh] [runs=3] [threads=1]
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+bin="${1:-${BUILD_DIR:-$here/../build}/src/coxmesh}"
+runs="${2:-3}" threads="${3:-1}"
+[[ -x "$bin" ]] || { echo "error: coxmesh not found: $bin" >&2; exit 1; }
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+
+cases=(
+  "S2 in R3, 101k simplices|--preset sphere --edge-length 0.0285 -o $work/out.vtu"
+  "S2 in R3, 0.56M simplices|--preset sphere --edge-length 0.012 -o $work/out.ply"
+  "torus in R3|--preset torus --edge-length 0.02 -o $work/out.vtu"
+  "S3 in R4|--preset sphere --m 3 --dim 4 --edge-length 0.12 -o $work/out.vtu"
+  "T3 in R6|--function x1^2+x2^2-1;x3^2+x4^2-1;x5^2+x6^2-1 --dim 6 --box -2,-2,-2,-2,-2,-2,2,2,2,2,2,2 --edge-length 0.55 -o $work/out.vtu"
+  "SO(3) in R9|--preset so3 --edge-length 1.1 --no-output"
+)
+echo "date $(date -u +%Y-%m-%dT%H:%MZ), $(nproc) CPUs, load average $(cut -d' ' -f1-3 /proc/loadavg), threads $threads, best of $runs"
+echo
+echo "| case | simplices | cells | trace s | complex s | topology s | rest s | whole s | topology / (trace + complex) | peak MiB |"
+echo "|---|---|---|---|---|---|---|---|---|---|"
+for c in "${cases[@]}"; do
+  name="${c%%|*}" args="${c#*|}"
+  best=""
+  for ((r = 0; r < runs; r++)); do
+    IFS=' ' read -r -a argv <<<"$args"
+    start=$(date +%s.%N)
+    "$bin" trace "${argv[@]}" --threads "$threads" --json >"$work/summary.json"
+    end=$(date +%s.%N)
+    line=$(/usr/bin/python3 - "$work/summary.json" "$start" "$end" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+t = s["timings"]
+whole = float(sys.argv[3]) - float(sys.argv[2])
+tr, cx, tp = t["trace_seconds"], t["cell_complex_seconds"], t["topology_seconds"]
+print(f"{whole:.3f}|{s['traced_simplices']}|{sum(s['cells']) + sum(s['boundary_cells'])}|{tr:.3f}|{cx:.3f}|{tp:.3f}|"
+      f"{whole - tr - cx - tp:.3f}|{whole:.3f}|{tp / (tr + cx):.2f}|{s['peak_memory_bytes'] / 2**20:.0f}")
+PY
+)
+    if [[ -z "$best" ]] || awk "BEGIN { exit !(${line%%|*} < ${best%%|*}) }"; then best="$line"; fi
+  done
+  echo "| $name | $(cut -d'|' -f2- <<<"$best" | sed 's/|/ | /g') |"
+done
