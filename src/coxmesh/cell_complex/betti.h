@@ -18,12 +18,13 @@ std::vector<std::size_t> betti_numbers_by_reduction(const CellComplex& cc, std::
 
 /// The same numbers, fast. β_0 is the number of components of the vertex graph. If `manifold` (the
 /// complex passed the manifold check), β_m is the number of groups of top cells joined across
-/// interior (m−1)-cells that have no boundary facet, and for m ≤ 2 the Euler characteristic gives
-/// β_1. Otherwise the complex is first shrunk by coreductions (a cell with exactly one remaining
-/// facet is removed with it) and collapses (a cell in exactly one remaining cell is removed with
-/// it), which keep the homology, starting from one vertex per component and one top cell per
-/// closed group; the reduction then sees only the few cells left (for the manifolds traced here
-/// at most a few hundred). O(incidences) before that reduction.
+/// interior (m−1)-cells that have no boundary facet, the Euler characteristic gives β_{m−1}, and
+/// only β_1 … β_{m−2} are left, which the (m−1)-skeleton determines: nothing is left for m ≤ 2.
+/// Those (or all, for a complex that is not a manifold) come from the reduction of what remains
+/// after coreductions (a cell with exactly one remaining facet is removed with it) and collapses
+/// (a cell in exactly one remaining cell is removed with it), which keep the homology, started
+/// from one vertex per component; for the manifolds traced here they leave at most a few hundred
+/// cells. O(incidences) before that reduction.
 std::vector<std::size_t> betti_numbers(const CellComplex& cc, bool manifold);
 
 }  // namespace coxmesh

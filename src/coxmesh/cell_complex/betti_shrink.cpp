@@ -31,10 +31,10 @@ constexpr std::uint32_t kRemoved = 0xFFFFFFFFu;
 // (relative to the first id of their dimension), which is the id of the one left when a count is 1.
 class Reducer {
  public:
-  explicit Reducer(const GlobalCells& c) : cells_(c), cell_(c.count(), Counts{}) {
-    const std::size_t n = c.count();
-    const int m = c.manifold_dimension();
-    for (int j = 1; j <= m; ++j)
+  // Over the cells of dimension ≤ top.
+  Reducer(const GlobalCells& c, int top) : cells_(c), top_(top), cell_(c.start(top + 1, false), Counts{}) {
+    const std::size_t n = cell_.size();
+    for (int j = 1; j <= top; ++j)
       for (std::size_t g = c.start(j, false); g < c.start(j + 1, false); ++g)
         c.for_each_facet(g, [&](std::size_t f) {
           ++cell_[g].down, ++cell_[f].up;
@@ -45,14 +45,14 @@ class Reducer {
     for (std::size_t g = 0; g < n; ++g) coface_start_[g + 1] = coface_start_[g] + cell_[g].up;
     coface_ids_.resize(coface_start_[n]);
     std::vector<std::uint64_t> next(coface_start_.begin(), coface_start_.end() - 1);
-    for (int j = 1; j <= m; ++j)
+    for (int j = 1; j <= top; ++j)
       for (std::size_t g = c.start(j, false); g < c.start(j + 1, false); ++g)
         c.for_each_facet(g, [&](std::size_t f) { coface_ids_[next[f]++] = relative(g, j); });
     for (std::size_t g = 0; g < n; ++g)
       if (cell_[g].up == 1 || cell_[g].down == 1) pending_.push_back(g);
   }
 
-  bool removed(std::size_t g) const { return cell_[g].up == kRemoved; }
+  bool removed(std::size_t g) const { return g >= cell_.size() || cell_[g].up == kRemoved; }
 
   // Removes cell g (a cell whose homology class is known, or one of a pair).
   void remove(std::size_t g) {
@@ -64,7 +64,7 @@ class Reducer {
         cell_[f].xup ^= relative(g, j);
         if (--cell_[f].up == 1) pending_.push_back(f);
       });
-    if (j < cells_.manifold_dimension()) {
+    if (j < top_) {
       const std::size_t first = cells_.start(j + 1, false);
       for (std::uint64_t i = coface_start_[g]; i < coface_start_[g + 1]; ++i) {
         const std::size_t c = first + coface_ids_[i];
@@ -101,6 +101,7 @@ class Reducer {
   std::uint32_t relative(std::size_t g, int j) const { return static_cast<std::uint32_t>(g - cells_.start(j, false)); }
 
   const GlobalCells& cells_;
+  int top_;
   struct Counts {
     std::uint32_t down = 0, up = 0, xdown = 0, xup = 0;
   };
@@ -150,36 +151,39 @@ std::vector<std::size_t> betti_numbers(const CellComplex& cc, bool manifold) {
     cells.for_each_facet(g, [&](std::size_t v) { ends[n++ & 1] = static_cast<std::uint32_t>(v); });
     components.join(ends[0], ends[1]);  // (closed complex: edge cells have two ends)
   }
+  // The first vertex of each component: the deletions below spread from it in about the order in
+  // which the walk found the cells, which keeps their memory accesses near each other.
   std::vector<std::uint32_t> component_vertex;
+  std::vector<std::uint8_t> seen(vertices, 0);
   for (std::uint32_t v = 0; v < vertices; ++v)
-    if (components.find(v) == v) component_vertex.push_back(v);
-  const std::vector<std::uint32_t> closed_pieces = manifold ? closed_top_pieces(cc) : std::vector<std::uint32_t>{};
-  if (manifold && m <= 2) {  // β_0 and β_m known: the Euler characteristic gives β_1
-    long long euler = 0;
-    for (int j = 0; j <= m; ++j)
-      euler += (j % 2 ? -1LL : 1LL) * static_cast<long long>(cells.start(j + 1, false) - cells.start(j, false));
-    const auto b0 = static_cast<long long>(component_vertex.size());
-    const auto bm = static_cast<long long>(closed_pieces.size());
-    const long long b1 = m == 1 ? b0 - euler : b0 + bm - euler;
-    COXMESH_ASSERT(b1 >= 0 && (m == 2 || b1 == bm));
-    std::vector<std::size_t> betti = {static_cast<std::size_t>(b0), static_cast<std::size_t>(b1)};
-    if (m == 2) betti.push_back(static_cast<std::size_t>(bm));
-    return betti;
+    if (const std::uint32_t root = components.find(v); !seen[root]) seen[root] = 1, component_vertex.push_back(v);
+  long long euler = 0;
+  for (int j = 0; j <= m; ++j)
+    euler += (j % 2 ? -1LL : 1LL) * static_cast<long long>(cells.start(j + 1, false) - cells.start(j, false));
+  // For a manifold, β_m is known too, and the Euler characteristic gives β_{m−1}: only the
+  // (m−1)-skeleton is needed, for β_1 … β_{m−2}, and none of it for m ≤ 2.
+  const int top = manifold ? m - 1 : m;
+  std::vector<std::size_t> betti(m + 1, 0);
+  if (!manifold || m >= 3) {
+    // Deletions start from one vertex per component, a 0-cycle that no chain bounds: removing it
+    // lowers β_0 by one and changes nothing else.
+    Reducer reducer(cells, top);
+    for (std::uint32_t v : component_vertex) reducer.remove(v);
+    reducer.reduce();
+    std::vector<std::uint8_t> keep(cells.count());
+    for (std::size_t g = 0; g < keep.size(); ++g) keep[g] = !reducer.removed(g);
+    betti = betti_numbers_by_reduction(cc, keep);
   }
-  // Otherwise the deletions start from these cells, whose classes are known: one vertex per
-  // component (a 0-cycle that no chain bounds) and, for a manifold, one top cell of each closed
-  // piece (removing it lowers β_m by one and changes nothing else).
-  Reducer reducer(cells);
-  std::vector<std::size_t> known(m + 1, 0);
-  for (std::uint32_t v : component_vertex) reducer.remove(v);
-  for (std::uint32_t c : closed_pieces) reducer.remove(cells.start(m, false) + c);
-  known[0] = component_vertex.size();
-  known[m] += closed_pieces.size();
-  reducer.reduce();
-  std::vector<std::uint8_t> keep(cells.count());
-  for (std::size_t g = 0; g < keep.size(); ++g) keep[g] = !reducer.removed(g);
-  std::vector<std::size_t> betti = betti_numbers_by_reduction(cc, keep);
-  for (int j = 0; j <= m; ++j) betti[j] += known[j];
+  betti[0] += component_vertex.size();
+  if (manifold) {
+    betti[m] = closed_top_pieces(cc).size();
+    long long rest = euler;  // (−1)^(m−1) β_{m−1} = χ − the other terms
+    for (int j = 0; j <= m; ++j)
+      if (j != m - 1) rest -= (j % 2 ? -1LL : 1LL) * static_cast<long long>(betti[j]);
+    const long long b = (m - 1) % 2 ? -rest : rest;
+    COXMESH_ASSERT(b >= 0);
+    betti[m - 1] = static_cast<std::size_t>(b);
+  }
   return betti;
 }
 
