@@ -2,7 +2,6 @@
 #include "coxmesh/io/polygons.h"
 
 #include <algorithm>
-#include <unordered_map>
 
 namespace coxmesh {
 
@@ -58,11 +57,15 @@ Ragged edge_ends(const CellComplex& cc, CellKind kind) {
   return ends;
 }
 
-Ragged polygon_cycles(const CellComplex& cc) {
+namespace {
+
+// polygon_cycles, and with `cycle_edges` the global id of each cycle's edges too: edge i joins
+// vertices i and i + 1 (the last joins the last vertex and the first).
+Ragged polygon_cycles(const CellComplex& cc, Ragged* cycle_edges) {
   Ragged cycles;
   const Ragged ends[2] = {edge_ends(cc, CellKind::interior), edge_ends(cc, CellKind::boundary)};
   const std::uint32_t n1 = ends[0].size();
-  std::vector<std::uint32_t> edges, cycle;
+  std::vector<std::uint32_t> edges, cycle, cycle_edge;
   std::vector<bool> used;
   for (CellKind kind : {CellKind::interior, CellKind::boundary}) {
     const CellLevel* level = cell_level(cc, kind, 2);
@@ -80,6 +83,7 @@ Ragged polygon_cycles(const CellComplex& cc) {
         used[0] = true;
         const auto first = ends_of(edges[0]);
         cycle.push_back(first[0]);
+        cycle_edge.assign(1, edges[0]);
         std::uint32_t current = first[1];
         while (current != cycle.front() && closed) {
           cycle.push_back(current);
@@ -89,6 +93,7 @@ Ragged polygon_cycles(const CellComplex& cc) {
             const auto e = ends_of(edges[i]);
             if (e[0] == current || e[1] == current) {
               used[i] = true;
+              cycle_edge.push_back(edges[i]);
               current = e[0] == current ? e[1] : e[0];
               closed = true;
             }
@@ -97,18 +102,25 @@ Ragged polygon_cycles(const CellComplex& cc) {
         closed =
             closed && cycle.size() == edges.size() && std::all_of(used.begin(), used.end(), [](bool u) { return u; });
       }
-      if (!closed) cycle.clear();
+      if (!closed) cycle.clear(), cycle_edge.clear();
       cycles.push(cycle);
+      if (cycle_edges) cycle_edges->push(cycle_edge);
     }
   }
   return cycles;
 }
 
+}  // namespace
+
+Ragged polygon_cycles(const CellComplex& cc) { return polygon_cycles(cc, nullptr); }
+
 Ragged oriented_polygon_cycles(const CellComplex& cc, const double* points3) {
-  Ragged polygons = polygon_cycles(cc);
+  Ragged edges;
+  Ragged polygons = polygon_cycles(cc, &edges);
   const std::uint32_t n2 = cell_count(cc, CellKind::interior, 2);
-  if (cc.manifold_dimension == 2) orient_polygons(polygons, 0, n2, points3);
-  if (cc.manifold_dimension == 3) orient_polygons(polygons, n2, polygons.size(), points3);
+  const std::uint32_t n_edges = cell_count(cc, CellKind::interior, 1) + cell_count(cc, CellKind::boundary, 1);
+  if (cc.manifold_dimension == 2) orient_polygons(polygons, edges, n_edges, 0, n2, points3);
+  if (cc.manifold_dimension == 3) orient_polygons(polygons, edges, n_edges, n2, polygons.size(), points3);
   return polygons;
 }
 
@@ -138,7 +150,8 @@ Ragged polyhedron_faces(const CellComplex& cc, CellKind kind, const Ragged& poly
   return faces;
 }
 
-void orient_polygons(Ragged& polygons, std::uint32_t first, std::uint32_t last, const double* points3) {
+void orient_polygons(Ragged& polygons, const Ragged& edges, std::uint32_t edge_count, std::uint32_t first,
+                     std::uint32_t last, const double* points3) {
   const std::uint32_t n = std::min(last, polygons.size());
   // Edge → the (at most two) polygons using it and the direction they traverse it.
   struct Uses {
@@ -146,13 +159,13 @@ void orient_polygons(Ragged& polygons, std::uint32_t first, std::uint32_t last, 
     bool forward[2];
     std::uint8_t count = 0;
   };
-  std::unordered_map<std::uint64_t, Uses> uses;
-  uses.reserve(polygons.items.size());
+  std::vector<Uses> uses(edge_count);
   for (std::uint32_t p = first; p < n; ++p) {
     const auto cycle = polygons[p];
+    const auto cycle_edges = edges[p];
     for (std::size_t i = 0; i < cycle.size(); ++i) {
       const std::uint32_t a = cycle[i], b = cycle[(i + 1) % cycle.size()];
-      Uses& u = uses[edge_key(a, b)];
+      Uses& u = uses[cycle_edges[i]];
       if (u.count < 2) {
         u.poly[u.count] = p;
         u.forward[u.count] = a < b;
@@ -173,9 +186,8 @@ void orient_polygons(Ragged& polygons, std::uint32_t first, std::uint32_t last, 
     for (std::size_t head = 0; head < queue.size(); ++head) {
       const std::uint32_t p = queue[head];
       component.push_back(p);
-      const auto cycle = polygons[p];
-      for (std::size_t i = 0; i < cycle.size(); ++i) {
-        const Uses& u = uses[edge_key(cycle[i], cycle[(i + 1) % cycle.size()])];
+      for (std::uint32_t e : edges[p]) {
+        const Uses& u = uses[e];
         if (u.count != 2) continue;
         const int self = u.poly[0] == p ? 0 : 1, other = 1 - self;
         const std::uint32_t q = u.poly[other];
@@ -189,8 +201,9 @@ void orient_polygons(Ragged& polygons, std::uint32_t first, std::uint32_t last, 
     bool flip_all = false;
     if (points3) {  // signed volume of the cone from the origin over the component's fan triangles
       double volume = 0;
+      std::vector<std::uint32_t> cycle;
       for (std::uint32_t p : component) {
-        std::vector<std::uint32_t> cycle(polygons[p].begin(), polygons[p].end());
+        cycle.assign(polygons[p].begin(), polygons[p].end());
         if (state[p] == 2) std::reverse(cycle.begin() + 1, cycle.end());
         const double* a = points3 + 3 * static_cast<std::size_t>(cycle[0]);
         for (std::size_t i = 1; i + 1 < cycle.size(); ++i) {

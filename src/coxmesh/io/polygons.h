@@ -74,6 +74,9 @@ Ragged polyhedron_faces(const CellComplex& cc, CellKind kind, const Ragged& poly
 /// an orientable surface this is a consistent orientation. With `points3` (global vertex
 /// coordinates, n × 3) each connected component is then flipped if its signed volume is negative,
 /// so closed surfaces in R³ get outward normals. Empty lists are left alone.
-void orient_polygons(Ragged& polygons, std::uint32_t first, std::uint32_t last, const double* points3 = nullptr);
+///   edges: per polygon, the global ids (interior 1-cells, then boundary ones: edge_count in all)
+///   of its edges in cycle order, edge i joining vertices i and i + 1.
+void orient_polygons(Ragged& polygons, const Ragged& edges, std::uint32_t edge_count, std::uint32_t first,
+                     std::uint32_t last, const double* points3 = nullptr);
 
 }  // namespace coxmesh
