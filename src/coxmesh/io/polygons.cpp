@@ -49,6 +49,8 @@ Ragged edge_ends(const CellComplex& cc, CellKind kind) {
   const CellLevel* level = cell_level(cc, kind, 1);
   if (!level) return ends;
   const std::uint32_t n0 = cell_count(cc, CellKind::interior, 0);
+  ends.offsets.reserve(level->size() + 1);
+  ends.items.reserve(2 * static_cast<std::size_t>(level->size()));
   std::vector<std::uint32_t> list;
   for (std::uint32_t c = 0; c < level->size(); ++c) {
     facets_of(*level, kind, c, n0, list);
@@ -67,6 +69,12 @@ Ragged polygon_cycles(const CellComplex& cc, Ragged* cycle_edges) {
   const std::uint32_t n1 = ends[0].size();
   std::vector<std::uint32_t> edges, cycle, cycle_edge;
   std::vector<bool> used;
+  std::size_t polygons = 0, corners = 0;  // (sizes known: the arrays grow once)
+  for (CellKind kind : {CellKind::interior, CellKind::boundary})
+    if (const CellLevel* level = cell_level(cc, kind, 2))
+      polygons += level->size(), corners += level->facet_ids.size() + level->boundary_facet.size();
+  for (Ragged* r : {&cycles, cycle_edges})
+    if (r) r->offsets.reserve(polygons + 1), r->items.reserve(corners);
   for (CellKind kind : {CellKind::interior, CellKind::boundary}) {
     const CellLevel* level = cell_level(cc, kind, 2);
     if (!level) continue;
