@@ -36,10 +36,12 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <random>
@@ -48,6 +50,8 @@
 #include <type_traits>
 #include <unordered_set>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "coxmesh/cell_complex/cell_complex.h"
 #include "coxmesh/lattice/packed_index.h"
@@ -306,6 +310,9 @@ struct Result {
   std::uint64_t gudhi_evaluations = 0, gudhi_points = 0;
   std::uint64_t cox_evaluations = 0, cox_oracle_evaluations = 0, cox_vertices = 0;
   PeakMemory cox_peak, gudhi_peak;
+  bool has_cli = false;
+  double cli_trace = 0, cli_complex = 0, cli_whole = 0;  // medians, fresh process per run
+  std::size_t cli_simplices = 0;
 };
 
 struct Case {
@@ -385,8 +392,25 @@ std::vector<Case> make_cases() {
                      gudhi_case(gct::make_product_function(circle, circle), seed, 2,
                                 gct::Function_affine_plane_in_Rd(Eigen::MatrixXd(n), p))});
   }
-  // The order of the issue: circle R², S² R³, torus R³, S² R⁴, S³ R⁴, S¹ R⁵, S² R⁵, S³ R⁶, flat torus
-  // R⁴, moment curve R⁶ in a ball, flat torus R⁴ cut by a hyperplane.
+  // The scales of GUDHI's own examples, where its trace takes seconds.
+  const std::size_t small = cases.size();
+  sphere_case(2, 3, 0.02);
+  {
+    const double major = 1.0, minor = 0.4;
+    std::vector<double> seed{major + minor, 0, 0};
+    cases.push_back({"torus in R^3", 3, 2, 0.024, coxmesh::torus(major, minor), nullptr, seed,
+                     gudhi_case(gct::Function_torus_in_R3(minor, major), seed, 2)});
+  }
+  sphere_case(3, 4, 0.12);
+  sphere_case(3, 6, 0.3);
+  {
+    std::vector<double> seed{1, 0, 1, 0};
+    cases.push_back({"flat torus in R^4", 4, 2, 0.06, cox_flat_torus, nullptr, seed,
+                     gudhi_case(gct::make_product_function(circle, circle), seed, 2)});
+  }
+  for (std::size_t i = small; i < cases.size(); ++i) cases[i].name += ", GUDHI's scale";
+  // The order of docs/benchmarks.md: circle R², S² R³, torus R³, S² R⁴, S³ R⁴, S¹ R⁵, S² R⁵, S³ R⁶,
+  // flat torus R⁴, moment curve R⁶ in a ball, flat torus R⁴ cut by a hyperplane; then GUDHI's scales.
   return cases;
 }
 
@@ -397,7 +421,55 @@ coxmesh::FunctionPtr counting(const coxmesh::FunctionPtr& f, std::uint64_t* call
   });
 }
 
-Result run_case(const Case& c, int runs, std::mt19937_64& rng) {
+// ---- The command-line tool on the same case: what a user runs -------------------------------------
+
+// The preset arguments of `coxmesh trace` for case c (empty: no preset is the same manifold).
+std::string cli_preset(const Case& c) {
+  if (c.domain) return "";
+  if (c.name.starts_with("torus in R^3")) return "--preset torus";
+  if (c.name.starts_with("flat torus in R^4")) return "--preset flat-torus";
+  if (c.name.starts_with("S^") && c.m >= 2)
+    return "--preset sphere --m " + std::to_string(c.m) + " --dim " + std::to_string(c.d);
+  return "";
+}
+
+std::string comma_list(const double* x, int n) {
+  std::string out;
+  char buf[32];
+  for (int i = 0; i < n; ++i) std::snprintf(buf, sizeof buf, i ? ",%.17g" : "%.17g", x[i]), out += buf;
+  return out;
+}
+
+// One run of `binary trace` in a fresh process on triangulation (a, b): whole wall time and the
+// phases the tool reports in its JSON summary.
+void cli_run(const std::string& binary, const Case& c, const Eigen::MatrixXd& a, const Eigen::VectorXd& b,
+             double& trace, double& complex, double& whole, std::size_t& simplices) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path();
+  const std::string stem = (dir / ("coxmesh-bench-" + std::to_string(getpid()))).string();
+  {
+    std::ofstream matrix(stem + ".matrix");
+    for (int i = 0; i < a.rows(); ++i) {
+      const Eigen::VectorXd row = a.row(i).transpose();
+      matrix << comma_list(row.data(), static_cast<int>(row.size())) << "\n";
+    }
+  }
+  std::string command = binary + " trace " + cli_preset(c) + " --matrix " + stem + ".matrix --offset " +
+                        comma_list(b.data(), c.d) + " --seed " + comma_list(c.seed.data(), c.d) +
+                        " --threads 1 --json --no-output > " + stem + ".json";
+  const auto start = std::chrono::steady_clock::now();
+  if (std::system(command.c_str()) != 0) {
+    std::fprintf(stderr, "error: %s failed\n", command.c_str());
+    std::exit(1);
+  }
+  whole = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::ifstream in(stem + ".json");
+  const nlohmann::json summary = nlohmann::json::parse(in);
+  trace = summary["timings"]["trace_seconds"], complex = summary["timings"]["cell_complex_seconds"];
+  simplices = summary["traced_simplices"];
+  std::filesystem::remove(stem + ".matrix"), std::filesystem::remove(stem + ".json");
+}
+
+Result run_case(const Case& c, int runs, std::mt19937_64& rng, const std::string& cli) {
   Result r;
   r.name = c.name;
   r.d = c.d;
@@ -447,6 +519,16 @@ Result run_case(const Case& c, int runs, std::mt19937_64& rng) {
   r.gudhi.complex_cpu = median(g[2]), r.gudhi.complex_wall = median(g[3]);
   r.cox.trace_cpu = median(x[0]), r.cox.trace_wall = median(x[1]);
   r.cox.complex_cpu = median(x[2]), r.cox.complex_wall = median(x[3]);
+  if (!cli.empty() && !cli_preset(c).empty()) {
+    std::vector<double> y[3];
+    for (int i = 0; i < runs; ++i) {
+      double trace, complex, whole;
+      cli_run(cli, c, a, b, trace, complex, whole, r.cli_simplices);
+      y[0].push_back(trace), y[1].push_back(complex), y[2].push_back(whole);
+    }
+    r.has_cli = true;
+    r.cli_trace = median(y[0]), r.cli_complex = median(y[1]), r.cli_whole = median(y[2]);
+  }
   return r;
 }
 
@@ -484,13 +566,15 @@ int main(int argc, char** argv) {
   if (argc > 2 && std::string(argv[1]) == "profile") return profile(argv[2], argc > 3 ? std::atoi(argv[3]) : 5);
   const int runs = argc > 1 ? std::max(1, std::atoi(argv[1])) : 3;
   const std::string filter = argc > 2 ? argv[2] : "";
+  const char* cli_env = std::getenv("COXMESH_CLI");  // the tool to run on the same cases, if set
+  const std::string cli = cli_env ? cli_env : "";
   std::mt19937_64 rng(kSeed);
   std::vector<Result> results;
   for (const Case& c : make_cases()) {
     std::mt19937_64 case_rng(rng());  // offsets do not depend on the filter
     if (!filter.empty() && c.name.find(filter) == std::string::npos) continue;
     std::fprintf(stderr, "running %s ...\n", c.name.c_str());
-    results.push_back(run_case(c, runs, case_rng));
+    results.push_back(run_case(c, runs, case_rng, cli));
   }
 
   std::printf(
@@ -512,6 +596,27 @@ int main(int argc, char** argv) {
                 sizes, same ? "" : " **≠ GUDHI**", r.cox.cells, r.gudhi.trace_cpu, r.cox.trace_cpu,
                 r.gudhi.trace_cpu / r.cox.trace_cpu, r.cox.interior / r.cox.trace_cpu, r.gudhi.complex_cpu,
                 r.cox.complex_cpu, r.gudhi.complex_cpu / r.cox.complex_cpu);
+  }
+  if (!cli.empty()) {
+    std::printf(
+        "\nThrough the command-line tool: `coxmesh trace` with the same preset, matrix, offset and seed, one "
+        "thread, a fresh process per run (median of %d); its own wall-clock phases against GUDHI's CPU time "
+        "above.\n\n",
+        runs);
+    std::printf("| case | \\|S\\| | tool trace s | trace × | tool complex s | complex × | whole command s |\n");
+    std::printf("|---|---|---|---|---|---|---|\n");
+    double log_trace = 0, log_complex = 0;
+    int n = 0;
+    for (const Result& r : results) {
+      if (!r.has_cli) continue;
+      const double tx = r.gudhi.trace_cpu / r.cli_trace, cx = r.gudhi.complex_cpu / r.cli_complex;
+      std::printf("| %s | %zu%s | %.4f | %.1f | %.4f | %.1f | %.3f |\n", r.name.c_str(), r.cli_simplices,
+                  r.cli_simplices == r.cox.interior ? "" : " **≠**", r.cli_trace, tx, r.cli_complex, cx, r.cli_whole);
+      log_trace += std::log(tx), log_complex += std::log(cx), ++n;
+    }
+    if (n)
+      std::printf("\nGeometric means: trace × %.1f, complex × %.1f.\n", std::exp(log_trace / n),
+                  std::exp(log_complex / n));
   }
   std::printf(
       "\nMemory, bytes per cell (cells of every dimension, interior and boundary). \"structure\" = "
