@@ -31,8 +31,10 @@ constexpr std::uint32_t kRemoved = 0xFFFFFFFFu;
 // (relative to the first id of their dimension), which is the id of the one left when a count is 1.
 class Reducer {
  public:
-  // Over the cells of dimension ≤ top.
-  Reducer(const GlobalCells& c, int top) : cells_(c), top_(top), cell_(c.start(top + 1, false), Counts{}) {
+  // Over the cells of dimension ≤ top; `top_is_cut`: the complex has cells above top, and the
+  // homology of dimension top is not wanted (only the lower ones).
+  Reducer(const GlobalCells& c, int top, bool top_is_cut)
+      : cells_(c), top_(top), top_is_cut_(top_is_cut), cell_(c.start(top + 1, false), Counts{}) {
     const std::size_t n = cell_.size();
     for (int j = 1; j <= top; ++j)
       for (std::size_t g = c.start(j, false); g < c.start(j + 1, false); ++g)
@@ -70,7 +72,7 @@ class Reducer {
         const std::size_t c = first + coface_ids_[i];
         if (removed(c)) continue;
         cell_[c].xdown ^= relative(g, j);
-        if (--cell_[c].down == 1) pending_.push_back(c);
+        if (--cell_[c].down <= 1) pending_.push_back(c);  // (0: a cycle at the top, see reduce())
       }
     }
   }
@@ -90,7 +92,12 @@ class Reducer {
         b = cells_.start(j - 1, false) + cell_[a].xdown;
       else if (cell_[a].up == 1)
         b = cells_.start(j + 1, false) + cell_[a].xup;
-      else
+      else if (j == top_ && cell_[a].down == 0 && top_is_cut_) {
+        // A cycle of the top dimension of a truncated skeleton: removing it changes only the
+        // skeleton's own H_top, which is not wanted.
+        remove(a);
+        continue;
+      } else
         continue;
       remove(a);
       remove(b);
@@ -102,6 +109,7 @@ class Reducer {
 
   const GlobalCells& cells_;
   int top_;
+  bool top_is_cut_;
   struct Counts {
     std::uint32_t down = 0, up = 0, xdown = 0, xup = 0;
   };
@@ -167,7 +175,7 @@ std::vector<std::size_t> betti_numbers(const CellComplex& cc, bool manifold) {
   if (!manifold || m >= 3) {
     // Deletions start from one vertex per component, a 0-cycle that no chain bounds: removing it
     // lowers β_0 by one and changes nothing else.
-    Reducer reducer(cells, top);
+    Reducer reducer(cells, top, top < m);
     for (std::uint32_t v : component_vertex) reducer.remove(v);
     reducer.reduce();
     std::vector<std::uint8_t> keep(cells.count());
