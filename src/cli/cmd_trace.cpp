@@ -30,14 +30,14 @@ struct TraceCliOptions {
   std::string center;
   TriangulationOptions tri;
   std::vector<std::string> seeds, domains;
-  bool auto_seed = false, json = false, quiet = false, no_output = false;
+  bool auto_seed = false, json = false, quiet = false, no_output = false, simplices = false;
   std::uint64_t max_simplices = 20'000'000;
   std::uint64_t max_memory = default_memory_limit();
   int threads = 0;  // all hardware threads
   std::string box;
   std::optional<double> domain_ball;
   std::string domain_center, cut;
-  std::string output, format, project;
+  std::string output, format, project, pole;
   std::vector<const CLI::Option*> preset_only;  // options that make no sense with --function
   const CLI::Option *function_given = nullptr, *dim_given = nullptr, *domain_center_given = nullptr;
   PointCloudCliOptions points;            // --points FILE and its options (points.h)
@@ -185,6 +185,7 @@ void run(TraceCliOptions o) {
              ".vtu";
   if (o.no_output && !o.output.empty()) throw InputError("--no-output contradicts -o " + o.output);
   const bool write = !output.empty();
+  std::vector<double> pole;
   const MeshFormat format = !write             ? MeshFormat::vtu
                             : o.format.empty() ? format_of_path(output)
                                                : parse_format(o.format);
@@ -192,8 +193,16 @@ void run(TraceCliOptions o) {
     if (output == "-" && format == MeshFormat::cxm)
       throw InputError("-o -: the native format is binary; give a file name");
     check_writable(output);
-    if (format != MeshFormat::cxm)
-      make_projection(o.project, d, {});  // the spec fits d (pca and files: checked again on the points)
+    if (!o.pole.empty()) pole = parse_point(o.pole, "--pole");
+    if (format != MeshFormat::cxm)  // the spec fits d (pca, stereographic and files: checked again on the points)
+      make_projection(o.project, d, {}, pole);
+    WriteOptions early;
+    early.projection = o.project;
+    early.simplices = o.simplices;
+    check_format(format, d, d - f->codimension(), early);
+  } else if (o.simplices || !o.pole.empty()) {
+    throw InputError(std::string(o.simplices ? "--simplices" : "--pole") +
+                     " applies to the output file; there is none");
   }
 
   MeshOptions mo;
@@ -288,6 +297,8 @@ void run(TraceCliOptions o) {
     if (progress) progress->phase("writing " + output);
     WriteOptions wo;
     wo.projection = o.project;
+    wo.pole = pole;
+    wo.simplices = o.simplices;
     wo.native.source = cloud ? "points " + o.points.file : from_text ? "function " + o.function : "preset " + o.preset;
     for (const std::string& text : o.domains) wo.native.source += "; domain " + text;
     if (o.domain_ball) wo.native.source += "; domain-ball " + std::to_string(*o.domain_ball);
@@ -407,13 +418,19 @@ void register_trace(CLI::App& app, int& status) {
   o->domain_center_given =
       cmd->add_option("--domain-center", o->domain_center, "centre of --domain-ball (default: origin)");
   cmd->add_option("--cut", o->cut, "n1,...,nd,c: keep the part where <n,x> < c");
-  cmd->add_option("-o,--output", o->output,
-                  "write the mesh to FILE (.vtu .off .ply .obj .mesh .cxm); default NAME.vtu (not with --json)");
+  cmd->add_option(
+      "-o,--output", o->output,
+      "write the mesh to FILE (.vtu .off .ply .obj .mesh .cxm .stl .msh); default NAME.vtu (not with --json)");
   cmd->add_option("--format", o->format,
-                  "output format, overriding the extension: vtu, off, noff, ply, obj, mesh, cxm");
+                  "output format, overriding the extension: vtu, off, noff, ply, obj, mesh, cxm, stl, msh");
+  cmd->add_flag(
+      "--simplices", o->simplices,
+      "write polygons as triangles and polyhedra as tetrahedra (.vtu .off .ply .obj; .mesh .stl .msh always)");
   cmd->add_option("--project", o->project,
-                  "3D formats with d != 3: coordinates i,j,k (1-based, default 1,2,3), pca, or a file of 3 rows of d "
-                  "numbers");
+                  "3D formats with d != 3: coordinates i,j,k (1-based, default 1,2,3), pca, stereographic (R^d to "
+                  "R^(d-1)), or a file of 3 rows of d numbers");
+  cmd->add_option("--pole", o->pole,
+                  "p1,...,pd: the pole of --project stereographic (default: chosen away from the manifold)");
   cmd->add_option("--threads", o->threads,
                   "worker threads (0: all hardware threads); the result is the same for any number")
       ->capture_default_str()
