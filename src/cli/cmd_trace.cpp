@@ -30,7 +30,7 @@ struct TraceCliOptions {
   std::string center;
   TriangulationOptions tri;
   std::vector<std::string> seeds, domains;
-  bool auto_seed = false, json = false, quiet = false, no_output = false, simplices = false;
+  bool auto_seed = false, json = false, quiet = false, no_output = false, simplices = false, refine = false;
   std::uint64_t max_simplices = 20'000'000;
   std::uint64_t max_memory = default_memory_limit();
   int threads = 0;  // all hardware threads
@@ -255,6 +255,7 @@ void run(TraceCliOptions o) {
     mo.on_phase = [&progress](const std::string& phase) { progress->phase(phase); };
   }
   mo.trace.threads = o.threads;
+  mo.refine = o.refine;
   // Expression functions are not thread-safe: every worker but the first gets its own.
   bool first = true;
   // --oracle local-pca: the per-simplex oracle, traced apart (one thread), with its defect count.
@@ -263,6 +264,7 @@ void run(TraceCliOptions o) {
   if (cloud && o.points.oracle == "local-pca") {
     if (!o.domains.empty() || o.domain_ball || !o.cut.empty() || !o.box.empty())
       throw InputError("--oracle local-pca takes no --domain, --domain-ball, --cut or --box (only the tube)");
+    if (o.refine) throw InputError("--refine needs the function F; --oracle local-pca has none");
     LocalPcaResult lp = mesh_local_pca(t, cloud->problem, mo.trace);
     defects = lp.defects;
     report.cells = std::move(lp.cells);
@@ -337,6 +339,13 @@ void run(TraceCliOptions o) {
     j["timings"] = {{"trace_seconds", report.trace_seconds},
                     {"cell_complex_seconds", report.cell_complex_seconds},
                     {"topology_seconds", report.topology_seconds}};
+    if (report.refinement) {
+      j["refinement"] = {{"max_abs_f_before", report.refinement->max_abs_f_before},
+                         {"max_abs_f_after", report.refinement->max_abs_f_after},
+                         {"vertices", report.refinement->vertices},
+                         {"not_refined", report.refinement->not_refined}};
+      j["timings"]["refine_seconds"] = report.refinement->seconds;
+    }
     if (write) {
       j["timings"]["write_seconds"] = write_s;
       j["output"] = {{"path", output},
@@ -361,6 +370,7 @@ void run(TraceCliOptions o) {
         << static_cast<long long>(cc.interior[0].size() / std::max(report.trace_seconds, 1e-9))
         << " simplices/s), cell complex " << report.cell_complex_seconds << " s, topology " << report.topology_seconds
         << " s";
+    if (report.refinement) out << ", refine " << report.refinement->seconds << " s";
     if (write) out << ", write " << write_s << " s";
     out << "\n  peak memory        " << peak_memory_bytes() / (1 << 20) << " MiB\n";
     if (write) {
@@ -369,6 +379,10 @@ void run(TraceCliOptions o) {
       if (written.skipped) out << "; " << written.skipped << " open cells at the cut not written";
       out << ")\n";
     }
+    if (report.refinement)
+      out << "  refinement         max |F| " << report.refinement->max_abs_f_before << " -> "
+          << report.refinement->max_abs_f_after << " (" << report.refinement->not_refined << " of "
+          << report.refinement->vertices << " vertices not refined)\n";
     if (!report.message.empty()) out << "  note: " << report.message << "\n";
   }
 }
@@ -435,6 +449,9 @@ void register_trace(CLI::App& app, int& status) {
                   "worker threads (0: all hardware threads); the result is the same for any number")
       ->capture_default_str()
       ->check(CLI::Range(0, 1024));
+  cmd->add_flag("--refine", o->refine,
+                "move the vertices onto M (Gauss-Newton on F, and on the domain at its boundary); each moves at "
+                "most a quarter of the longest edge");
   cmd->add_flag("--no-output", o->no_output, "write no file");
   cmd->add_flag("--json", o->json, "print the summary as JSON (and write a file only with -o)");
   cmd->add_flag("-q,--quiet", o->quiet, "print nothing but errors");

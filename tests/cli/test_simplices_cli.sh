@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # End-to-end tests of the simplicial output ($COXMESH = the binary): --simplices in VTU (read back
 # with VTK's reader from Debian python3-vtk9) and OFF, binary STL and Gmsh .msh files read back,
-# --project stereographic, and the error lines of formats and options that cannot apply.
+# --project stereographic, --refine, and the error lines of formats and options that cannot apply.
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
 py=/usr/bin/python3
@@ -75,7 +75,23 @@ check "stereographic STL with a pole" "yes" "$([[ -s ft.stl ]] && echo yes)"
 check "stereographic image of S^2 is planar" "0" "$(awk '$1 == "v" && $4 != 0' plane.obj | wc -l)"
 fails_with "--pole of the wrong size" "--pole has 3 coordinates, expected d = 4" "$bin" trace --preset flat-torus --project stereographic --pole 1,1,1 -o p.vtu
 fails_with "--pole without stereographic" "does not apply to --project pca" "$bin" trace --preset flat-torus --project pca --pole 1,1,1,1 -o p.vtu
+"$py" -c 'import math
+for i in range(400):
+    z = -1 + (i + 0.5) / 200; r = math.sqrt(1 - z * z); a = 2.399963 * i
+    print(r * math.cos(a), r * math.sin(a), z)' > cloud.xyz
+fails_with "--refine with the local-PCA oracle" "--refine needs the function F" "$bin" trace --points cloud.xyz --oracle local-pca --refine --no-output
 fails_with "--pole without output" "--pole applies to the output file" "$bin" trace --preset flat-torus --pole 1,1,1,1 --no-output
+
+# --refine: the vertices on M (JSON report), the same complex; text line; with a domain.
+"$bin" trace --preset torus --edge-length 0.1 --json --no-output > plain.json
+"$bin" trace --preset torus --edge-length 0.1 --json --no-output --refine --threads 2 > refined.json
+check "--refine: report" "True True 0 True" "$("$py" -c 'import json
+p = json.load(open("plain.json")); r = json.load(open("refined.json")); f = r["refinement"]
+print(f["max_abs_f_before"] > 1e-4, f["max_abs_f_after"] < 1e-12, f["not_refined"], r["cells"] == p["cells"] and r["betti"] == p["betti"])')"
+check "--refine: text summary" "1" "$("$bin" trace --preset sphere --refine --no-output | grep -c '^  refinement         max |F| ')"
+check "--refine with a domain" "True 0" "$("$bin" trace --preset sphere --domain-ball 0.9 --domain-center 1,0,0 --refine --json | "$py" -c 'import json, sys
+f = json.load(sys.stdin)["refinement"]; print(f["max_abs_f_after"] < 1e-12, f["not_refined"])')"
+check "--refine: written vertices on the sphere" "1" "$("$bin" trace --preset sphere --refine -o r.obj -q && awk '$1 == "v" { e = sqrt($2 * $2 + $3 * $3 + $4 * $4) - 1; if (e < 0) e = -e; if (e > m) m = e } END { print (m < 1e-12) }' r.obj)"
 
 # Formats that cannot hold the mesh: one error line, before tracing, no file.
 fails_with "STL of a curve" "stl holds triangles, but this is a 1-manifold" "$bin" trace --function "x^2+y^2-1" -o c.stl
