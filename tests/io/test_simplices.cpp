@@ -508,3 +508,36 @@ TEST(Stereographic, FlatTorusInR4BecomesAnEmbeddedTorus) {
     }
   EXPECT_GT(squashed_crossings, 0u);
 }
+
+TEST(Simplices, TetrahedraOfS3InR4AreCoherent) {
+  // S³ projected to its first three coordinates folds over itself, so the sign of a tetrahedron's
+  // volume there says nothing: the orientation comes from the neighbours. Every triangle lies in two
+  // tetrahedra, which induce opposite orientations on it.
+  const CellComplex cc = trace(sphere(3, 4, 1.0), nullptr, 0.6);
+  const std::vector<double> p3 = project_points(make_projection("1,2,3", 4, {}), vertex_coordinates(cc));
+  const Simplices s = simplicial_complex(cc, p3);
+  ASSERT_GT(s.interior_count(), 100u);
+  std::map<std::array<std::uint32_t, 3>, std::vector<bool>> induced;
+  std::size_t negative = 0;
+  for (std::size_t t = 0; t < s.interior.size(); t += 4) {
+    negative +=
+        tetrahedron_volume6(p3.data(), s.interior[t], s.interior[t + 1], s.interior[t + 2], s.interior[t + 3]) < 0 ? 1
+                                                                                                                   : 0;
+    for (int i = 0; i < 4; ++i) {
+      std::array<std::uint32_t, 3> f;
+      int k = 0;
+      for (int j = 0; j < 4; ++j)
+        if (j != i) f[k++] = s.interior[t + j];
+      bool odd = i % 2 == 1;
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b + 1 < 3; ++b)
+          if (f[b] > f[b + 1]) std::swap(f[b], f[b + 1]), odd = !odd;
+      induced[f].push_back(odd);
+    }
+  }
+  for (const auto& [f, o] : induced) {
+    ASSERT_EQ(o.size(), 2u);
+    EXPECT_NE(o[0], o[1]) << f[0] << " " << f[1] << " " << f[2];
+  }
+  EXPECT_GT(negative, s.interior_count() / 10);  // the fold: many tetrahedra are negative there
+}

@@ -42,6 +42,77 @@ void orient_curve_edges(std::vector<std::uint32_t>& edges, std::uint32_t vertice
   for (std::uint32_t e = 0; e < n; ++e) walk(e, edges[2 * e]);
 }
 
+// Tetrahedra turned coherently: two sharing a triangle induce opposite orientations on it
+// (breadth-first over the shared triangles; on a non-orientable 3-manifold the first choice wins),
+// then each connected component turned so that its volume in points3 is positive.
+void orient_tetrahedra(std::vector<std::uint32_t>& tets, const double* p3) {
+  const std::size_t n = tets.size() / 4;
+  struct Face {
+    std::uint32_t v[3], tet;
+    bool odd;  // the orientation the tetrahedron induces on it, relative to the sorted order
+  };
+  std::vector<Face> faces;
+  faces.reserve(4 * n);
+  for (std::size_t t = 0; t < n; ++t)
+    for (int i = 0; i < 4; ++i) {  // ∂[v0 v1 v2 v3] = Σ (−1)^i [v0 … v̂i … v3]
+      Face f{{0, 0, 0}, static_cast<std::uint32_t>(t), (i % 2) == 1};
+      int k = 0;
+      for (int j = 0; j < 4; ++j)
+        if (j != i) f.v[k++] = tets[4 * t + j];
+      for (int a = 0; a < 3; ++a)  // sort, counting transpositions
+        for (int b = 0; b + 1 < 3 - a; ++b)
+          if (f.v[b] > f.v[b + 1]) std::swap(f.v[b], f.v[b + 1]), f.odd = !f.odd;
+      faces.push_back(f);
+    }
+  std::sort(faces.begin(), faces.end(),
+            [](const Face& a, const Face& b) { return std::lexicographical_compare(a.v, a.v + 3, b.v, b.v + 3); });
+  // Neighbours across each triangle shared by exactly two tetrahedra, and whether, as stored, the
+  // two induce the same orientation on it (then one of them must turn).
+  constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+  std::vector<std::uint32_t> neighbour(4 * n, kNone);
+  std::vector<std::uint8_t> same(4 * n, 0), used(n, 0);
+  for (std::size_t i = 0; i < faces.size();) {
+    std::size_t j = i + 1;
+    while (j < faces.size() && std::equal(faces[i].v, faces[i].v + 3, faces[j].v)) ++j;
+    if (j == i + 2) {
+      const Face &a = faces[i], &b = faces[i + 1];
+      if (a.tet != b.tet && used[a.tet] < 4 && used[b.tet] < 4) {
+        const std::size_t sa = 4 * static_cast<std::size_t>(a.tet) + used[a.tet]++;
+        const std::size_t sb = 4 * static_cast<std::size_t>(b.tet) + used[b.tet]++;
+        neighbour[sa] = b.tet, neighbour[sb] = a.tet;
+        same[sa] = same[sb] = a.odd == b.odd ? 1 : 0;
+      }
+    }
+    i = j;
+  }
+  std::vector<std::uint8_t> state(n, 0);  // 0 unvisited, 1 kept, 2 turned
+  std::vector<std::uint32_t> queue;
+  for (std::size_t start = 0; start < n; ++start) {
+    if (state[start]) continue;
+    state[start] = 1;
+    queue.assign(1, static_cast<std::uint32_t>(start));
+    double volume = 0;
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+      const std::uint32_t t = queue[head];
+      const bool turned = state[t] == 2;
+      if (p3) {
+        const double v = tetrahedron_volume6(p3, tets[4 * t], tets[4 * t + 1], tets[4 * t + 2], tets[4 * t + 3]);
+        volume += turned ? -v : v;
+      }
+      for (int k = 0; k < 4; ++k) {
+        const std::uint32_t u = neighbour[4 * static_cast<std::size_t>(t) + k];
+        if (u == kNone || state[u]) continue;
+        state[u] = (turned != (same[4 * static_cast<std::size_t>(t) + k] != 0)) ? 2 : 1;
+        queue.push_back(u);
+      }
+    }
+    const bool turn_all = volume < 0;
+    for (std::uint32_t t : queue)
+      if ((state[t] == 2) != turn_all)
+        std::swap(tets[4 * static_cast<std::size_t>(t) + 2], tets[4 * static_cast<std::size_t>(t) + 3]);
+  }
+}
+
 }  // namespace
 
 double tetrahedron_volume6(const double* p3, std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t e) {
@@ -123,6 +194,7 @@ Simplices simplicial_complex(const CellComplex& cc, std::span<const double> poin
                                   });
     }
   }
+  orient_tetrahedra(s.interior, p3);
   for (std::uint32_t c = n2; c < polygons.size(); ++c) {
     if (polygons[c].empty()) ++s.skipped;
     for_each_fan_triangle(polygons[c], add_triangle(s.boundary));

@@ -73,8 +73,10 @@ struct Simplices {
 ///   m = 2: triangles of the polygons oriented by oriented_polygon_cycles (coherent where the
 ///          surface is orientable; closed components in R³ outward, i.e. along ∇F for a sphere
 ///          F = |x|² − r²); boundary edges in the direction of the triangle they bound;
-///   m = 3: tetrahedra positively oriented in `points3` (coherent when d = 3); boundary triangles
-///          from the outward-oriented boundary surface.
+///   m = 3: tetrahedra coherently oriented (two sharing a triangle induce opposite orientations on
+///          it, where M is orientable), each connected component with positive volume in
+///          `points3` (every tetrahedron positive when d = 3); boundary triangles from the
+///          outward-oriented boundary surface.
 /// points3: n × 3 projected vertex coordinates, or empty (no orientation by geometry).
 ///   Throws InputError for m > 3.
 Simplices simplicial_complex(const CellComplex& cc, std::span<const double> points3);
