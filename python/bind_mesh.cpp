@@ -8,6 +8,7 @@
 #include "bindings.h"
 #include "coxmesh/io/polygons.h"
 #include "coxmesh/io/projection.h"
+#include "coxmesh/io/simplices.h"
 #include "coxmesh/io/topology_json.h"
 #include "coxmesh/io/write_mesh.h"
 #include "mesh.h"
@@ -51,7 +52,7 @@ py::dict summary(const Mesh& m) {
   return j;
 }
 
-// Triangles of a surface's polygons, fanned from their first vertex, over the global vertex
+// Triangles of a surface's polygons, fanned from their smallest vertex (simplices.h), over the global vertex
 // numbering (polygons.h); the points projected to R^3 when d != 3 or a projection is given.
 py::tuple triangles(const Mesh& m, const std::string& project) {
   const CellComplex& cc = m.cells;
@@ -63,12 +64,10 @@ py::tuple triangles(const Mesh& m, const std::string& project) {
   const std::vector<double> points3 = p.changes_points ? project_points(p, coords) : coords;
   const Ragged polygons = oriented_polygon_cycles(cc, points3.data());
   std::vector<std::int32_t> tri;
-  for (std::uint32_t i = 0; i < polygons.size(); ++i) {
-    const auto cycle = polygons[i];
-    for (std::size_t j = 1; j + 1 < cycle.size(); ++j)
-      tri.insert(tri.end(), {static_cast<std::int32_t>(cycle[0]), static_cast<std::int32_t>(cycle[j]),
-                             static_cast<std::int32_t>(cycle[j + 1])});
-  }
+  for (std::uint32_t i = 0; i < polygons.size(); ++i)
+    for_each_fan_triangle(polygons[i], [&tri](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+      tri.insert(tri.end(), {static_cast<std::int32_t>(a), static_cast<std::int32_t>(b), static_cast<std::int32_t>(c)});
+    });
   const py::ssize_t n = static_cast<py::ssize_t>(points3.size() / 3), t = static_cast<py::ssize_t>(tri.size() / 3);
   py::array_t<double> v({n, py::ssize_t{3}});
   std::copy(points3.begin(), points3.end(), v.mutable_data());
@@ -222,16 +221,18 @@ Dimension 0 has no facets: both arrays are empty.)doc")
           py::arg("project") = py::none(), R"doc(
 A surface (m = 2) as triangles, for matplotlib:  V, T = mesh.triangles();
 ax.plot_trisurf(V[:, 0], V[:, 1], V[:, 2], triangles=T). V: (n, 3) points (interior then boundary
-vertices); T: (t, 3) int32 vertex ids, each polygon fanned from its first vertex, consistently
+vertices); T: (t, 3) int32 vertex ids, each polygon fanned from its smallest vertex, consistently
 oriented (outwards for closed surfaces). For d != 3 the points are projected: project is "i,j,k"
 (coordinates, 1-based), "pca", or a file with 3 rows of d numbers, as for write().)doc")
       .def(
           "write",
-          [](const Mesh& x, const std::string& path, const py::object& format, const py::object& project) {
+          [](const Mesh& x, const std::string& path, const py::object& format, const py::object& project,
+             bool simplices) {
             const MeshFormat f = format.is_none() ? format_of_path(path) : parse_format(format.cast<std::string>());
             WriteOptions options;
             options.projection = project.is_none() ? std::string() : project.cast<std::string>();
             options.native = x.info;
+            options.simplices = simplices;
             WrittenCounts written;
             {
               py::gil_scoped_release release;
@@ -242,9 +243,11 @@ oriented (outwards for closed surfaces). For d != 3 the points are projected: pr
             out["cells"] = written.cells, out["skipped_cells"] = written.skipped;
             return out;
           },
-          py::arg("path"), py::arg("format") = py::none(), py::arg("project") = py::none(), R"doc(
-Writes the mesh, atomically, in the format of the extension (.vtu .off .ply .obj .mesh .cxm) or of
-`format` (vtu, off, noff, ply, obj, mesh, cxm). .cxm keeps every cell in R^d (coxmesh.read() loads
+          py::arg("path"), py::arg("format") = py::none(), py::arg("project") = py::none(),
+          py::arg("simplices") = false, R"doc(
+Writes the mesh, atomically, in the format of the extension (.vtu .off .ply .obj .mesh .cxm .stl
+.msh) or of `format` (vtu, off, noff, ply, obj, mesh, cxm, stl, msh); simplices=True writes
+polygons as triangles and polyhedra as tetrahedra. .cxm keeps every cell in R^d (coxmesh.read() loads
 it back exactly); the others hold 3D points: for d != 3 give project ("i,j,k", "pca" or a file of
 3 rows of d numbers; default the first three coordinates). Returns the counts written, as a dict.
 Raises InputError when the format cannot hold the mesh or the path is not writable.)doc")

@@ -28,7 +28,7 @@ def test_cxm_round_trip(tmp_path, cli):
 
 
 @pytest.mark.parametrize("name,fmt", [("s.vtu", None), ("s.off", None), ("s.ply", None), ("s.obj", None),
-                                      ("s.mesh", None), ("s.data", "ply")])
+                                      ("s.mesh", None), ("s.data", "ply"), ("s.stl", None), ("s.msh", None)])
 def test_every_format_is_written(tmp_path, name, fmt):
     mesh = coxmesh.trace(preset="sphere")
     path = tmp_path / name
@@ -50,3 +50,17 @@ def test_projection_and_errors(tmp_path):
     with pytest.raises(ValueError):
         coxmesh.read(str(tmp_path / "bad.cxm"))
     assert not os.path.exists(tmp_path / "p.xyz")
+
+
+def test_simplices(tmp_path):
+    mesh = coxmesh.trace(preset="torus")
+    V, T = mesh.triangles()
+    off = tmp_path / "t.off"
+    counts = mesh.write(str(off), simplices=True)
+    assert counts["cells"] == len(T)
+    faces = off.read_text().split("\n")[2 + len(V):2 + len(V) + len(T)]
+    assert all(f.split()[0] == "3" for f in faces)
+    # the same triangles, in the same order and orientation
+    np.testing.assert_array_equal(np.array([[int(x) for x in f.split()[1:]] for f in faces]), T)
+    with pytest.raises(ValueError):
+        mesh.write(str(tmp_path / "t.cxm"), simplices=True)

@@ -14,7 +14,8 @@ namespace coxmesh::cli {
 namespace {
 
 struct ConvertOptions {
-  std::string input, output, format, project;
+  std::string input, output, format, project, pole;
+  bool simplices = false;
   bool quiet = false;
 };
 
@@ -29,6 +30,8 @@ void convert(const ConvertOptions& o) {
   const NativeFile file = read_native(o.input);
   WriteOptions wo;
   wo.projection = o.project;
+  wo.simplices = o.simplices;
+  if (!o.pole.empty()) wo.pole = parse_point(o.pole, "--pole");
   wo.native = file.info;
   const WrittenCounts n = write_mesh(o.output, format, file.cells, wo);
   if (!o.quiet) {
@@ -75,9 +78,13 @@ void register_io(CLI::App& app, int& status) {
   CLI::App* convert_cmd =
       app.add_subcommand("convert", "re-export a .cxm file (written by trace -o FILE.cxm) to any format");
   convert_cmd->add_option("input", c->input, "a .cxm file")->required();
-  convert_cmd->add_option("output", c->output, "the file to write (.vtu .off .ply .obj .mesh .cxm)")->required();
+  convert_cmd->add_option("output", c->output, "the file to write (.vtu .off .ply .obj .mesh .cxm .stl .msh)")
+      ->required();
+  convert_cmd->add_option("--pole", c->pole, "p1,...,pd: the pole of --project stereographic");
+  convert_cmd->add_flag("--simplices", c->simplices,
+                        "polygons as triangles and polyhedra as tetrahedra (.vtu .off .ply .obj)");
   convert_cmd->add_option("--format", c->format,
-                          "output format, overriding the extension: vtu, off, noff, ply, obj, mesh, cxm");
+                          "output format, overriding the extension: vtu, off, noff, ply, obj, mesh, cxm, stl, msh");
   convert_cmd->add_option(
       "--project", c->project,
       "3D formats with d != 3: coordinates i,j,k (1-based, default 1,2,3), pca, or a file of 3 rows "

@@ -30,14 +30,14 @@ struct TraceCliOptions {
   std::string center;
   TriangulationOptions tri;
   std::vector<std::string> seeds, domains;
-  bool auto_seed = false, json = false, quiet = false, no_output = false;
+  bool auto_seed = false, json = false, quiet = false, no_output = false, simplices = false, refine = false;
   std::uint64_t max_simplices = 20'000'000;
   std::uint64_t max_memory = default_memory_limit();
   int threads = 0;  // all hardware threads
   std::string box;
   std::optional<double> domain_ball;
   std::string domain_center, cut;
-  std::string output, format, project;
+  std::string output, format, project, pole;
   std::vector<const CLI::Option*> preset_only;  // options that make no sense with --function
   const CLI::Option *function_given = nullptr, *dim_given = nullptr, *domain_center_given = nullptr;
   PointCloudCliOptions points;            // --points FILE and its options (points.h)
@@ -185,6 +185,7 @@ void run(TraceCliOptions o) {
              ".vtu";
   if (o.no_output && !o.output.empty()) throw InputError("--no-output contradicts -o " + o.output);
   const bool write = !output.empty();
+  std::vector<double> pole;
   const MeshFormat format = !write             ? MeshFormat::vtu
                             : o.format.empty() ? format_of_path(output)
                                                : parse_format(o.format);
@@ -192,8 +193,16 @@ void run(TraceCliOptions o) {
     if (output == "-" && format == MeshFormat::cxm)
       throw InputError("-o -: the native format is binary; give a file name");
     check_writable(output);
-    if (format != MeshFormat::cxm)
-      make_projection(o.project, d, {});  // the spec fits d (pca and files: checked again on the points)
+    if (!o.pole.empty()) pole = parse_point(o.pole, "--pole");
+    if (format != MeshFormat::cxm)  // the spec fits d (pca, stereographic and files: checked again on the points)
+      make_projection(o.project, d, {}, pole);
+    WriteOptions early;
+    early.projection = o.project;
+    early.simplices = o.simplices;
+    check_format(format, d, d - f->codimension(), early);
+  } else if (o.simplices || !o.pole.empty()) {
+    throw InputError(std::string(o.simplices ? "--simplices" : "--pole") +
+                     " applies to the output file; there is none");
   }
 
   MeshOptions mo;
@@ -246,6 +255,7 @@ void run(TraceCliOptions o) {
     mo.on_phase = [&progress](const std::string& phase) { progress->phase(phase); };
   }
   mo.trace.threads = o.threads;
+  mo.refine = o.refine;
   // Expression functions are not thread-safe: every worker but the first gets its own.
   bool first = true;
   // --oracle local-pca: the per-simplex oracle, traced apart (one thread), with its defect count.
@@ -254,6 +264,7 @@ void run(TraceCliOptions o) {
   if (cloud && o.points.oracle == "local-pca") {
     if (!o.domains.empty() || o.domain_ball || !o.cut.empty() || !o.box.empty())
       throw InputError("--oracle local-pca takes no --domain, --domain-ball, --cut or --box (only the tube)");
+    if (o.refine) throw InputError("--refine needs the function F; --oracle local-pca has none");
     LocalPcaResult lp = mesh_local_pca(t, cloud->problem, mo.trace);
     defects = lp.defects;
     report.cells = std::move(lp.cells);
@@ -288,6 +299,8 @@ void run(TraceCliOptions o) {
     if (progress) progress->phase("writing " + output);
     WriteOptions wo;
     wo.projection = o.project;
+    wo.pole = pole;
+    wo.simplices = o.simplices;
     wo.native.source = cloud ? "points " + o.points.file : from_text ? "function " + o.function : "preset " + o.preset;
     for (const std::string& text : o.domains) wo.native.source += "; domain " + text;
     if (o.domain_ball) wo.native.source += "; domain-ball " + std::to_string(*o.domain_ball);
@@ -326,6 +339,13 @@ void run(TraceCliOptions o) {
     j["timings"] = {{"trace_seconds", report.trace_seconds},
                     {"cell_complex_seconds", report.cell_complex_seconds},
                     {"topology_seconds", report.topology_seconds}};
+    if (report.refinement) {
+      j["refinement"] = {{"max_abs_f_before", report.refinement->max_abs_f_before},
+                         {"max_abs_f_after", report.refinement->max_abs_f_after},
+                         {"vertices", report.refinement->vertices},
+                         {"not_refined", report.refinement->not_refined}};
+      j["timings"]["refine_seconds"] = report.refinement->seconds;
+    }
     if (write) {
       j["timings"]["write_seconds"] = write_s;
       j["output"] = {{"path", output},
@@ -350,6 +370,7 @@ void run(TraceCliOptions o) {
         << static_cast<long long>(cc.interior[0].size() / std::max(report.trace_seconds, 1e-9))
         << " simplices/s), cell complex " << report.cell_complex_seconds << " s, topology " << report.topology_seconds
         << " s";
+    if (report.refinement) out << ", refine " << report.refinement->seconds << " s";
     if (write) out << ", write " << write_s << " s";
     out << "\n  peak memory        " << peak_memory_bytes() / (1 << 20) << " MiB\n";
     if (write) {
@@ -358,6 +379,10 @@ void run(TraceCliOptions o) {
       if (written.skipped) out << "; " << written.skipped << " open cells at the cut not written";
       out << ")\n";
     }
+    if (report.refinement)
+      out << "  refinement         max |F| " << report.refinement->max_abs_f_before << " -> "
+          << report.refinement->max_abs_f_after << " (" << report.refinement->not_refined << " of "
+          << report.refinement->vertices << " vertices not refined)\n";
     if (!report.message.empty()) out << "  note: " << report.message << "\n";
   }
 }
@@ -407,17 +432,26 @@ void register_trace(CLI::App& app, int& status) {
   o->domain_center_given =
       cmd->add_option("--domain-center", o->domain_center, "centre of --domain-ball (default: origin)");
   cmd->add_option("--cut", o->cut, "n1,...,nd,c: keep the part where <n,x> < c");
-  cmd->add_option("-o,--output", o->output,
-                  "write the mesh to FILE (.vtu .off .ply .obj .mesh .cxm); default NAME.vtu (not with --json)");
+  cmd->add_option(
+      "-o,--output", o->output,
+      "write the mesh to FILE (.vtu .off .ply .obj .mesh .cxm .stl .msh); default NAME.vtu (not with --json)");
   cmd->add_option("--format", o->format,
-                  "output format, overriding the extension: vtu, off, noff, ply, obj, mesh, cxm");
+                  "output format, overriding the extension: vtu, off, noff, ply, obj, mesh, cxm, stl, msh");
+  cmd->add_flag(
+      "--simplices", o->simplices,
+      "write polygons as triangles and polyhedra as tetrahedra (.vtu .off .ply .obj; .mesh .stl .msh always)");
   cmd->add_option("--project", o->project,
-                  "3D formats with d != 3: coordinates i,j,k (1-based, default 1,2,3), pca, or a file of 3 rows of d "
-                  "numbers");
+                  "3D formats with d != 3: coordinates i,j,k (1-based, default 1,2,3), pca, stereographic (R^d to "
+                  "R^(d-1)), or a file of 3 rows of d numbers");
+  cmd->add_option("--pole", o->pole,
+                  "p1,...,pd: the pole of --project stereographic (default: chosen away from the manifold)");
   cmd->add_option("--threads", o->threads,
                   "worker threads (0: all hardware threads); the result is the same for any number")
       ->capture_default_str()
       ->check(CLI::Range(0, 1024));
+  cmd->add_flag("--refine", o->refine,
+                "move the vertices onto M (Gauss-Newton on F, and on the domain at its boundary); each moves at "
+                "most a quarter of the longest edge");
   cmd->add_flag("--no-output", o->no_output, "write no file");
   cmd->add_flag("--json", o->json, "print the summary as JSON (and write a file only with -o)");
   cmd->add_flag("-q,--quiet", o->quiet, "print nothing but errors");

@@ -237,8 +237,8 @@ fails_with "no seed in the box" "no point of the manifold found" "$bin" trace --
 echo notadir > file.txt
 fails_with "unwritable path (parent is a file)" "cannot write file.txt/out.vtu" "$bin" trace --preset sphere -o file.txt/out.vtu
 fails_with "unwritable path (no directory)" "cannot write nodir/out.vtu" "$bin" trace --preset sphere -o nodir/out.vtu
-fails_with "unknown extension" "cannot tell the format" "$bin" trace --preset sphere -o out.stl
-fails_with "unknown format" "unknown format 'stl'" "$bin" trace --preset sphere -o keep.vtu --format stl
+fails_with "unknown extension" "cannot tell the format" "$bin" trace --preset sphere -o out.step
+fails_with "unknown format" "unknown format 'step'" "$bin" trace --preset sphere -o keep.vtu --format step
 fails_with "projection beyond d" "outside 1..4" "$bin" trace --preset flat-torus -o keep.vtu --project 1,2,5
 printf '1 0 0\n0 1 0\n0 0 1\n' > p3.txt
 fails_with "projection matrix of the wrong shape" "expected d = 4" "$bin" convert s3.cxm keep.vtu --project p3.txt

@@ -496,9 +496,9 @@ TEST(WriteMesh, FormatsByNameAndExtension) {
   EXPECT_EQ(format_of_path("x.mesh"), MeshFormat::medit);
   EXPECT_EQ(parse_format("medit"), MeshFormat::medit);
   EXPECT_EQ(parse_format("noff"), MeshFormat::noff);
-  EXPECT_THROW(format_of_path("x.stl"), InputError);
+  EXPECT_THROW(format_of_path("x.step"), InputError);
   EXPECT_THROW(format_of_path("noextension"), InputError);
-  EXPECT_THROW(parse_format("stl"), InputError);
+  EXPECT_THROW(parse_format("step"), InputError);
 }
 
 TEST(Projection, SpecsAndErrors) {

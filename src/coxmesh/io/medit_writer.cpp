@@ -1,4 +1,4 @@
-// INRIA medit .mesh writer: polygons as triangle fans, 3-cells as tetrahedra; see mesh_formats.h.
+// INRIA medit .mesh writer: polygons as triangle fans, 3-cells as tetrahedra (simplices.h); see mesh_formats.h.
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -8,41 +8,13 @@
 #include "coxmesh/io/mesh_formats.h"
 #include "coxmesh/io/number_text.h"
 #include "coxmesh/io/polygons.h"
+#include "coxmesh/io/simplices.h"
 
 namespace coxmesh {
 
 namespace {
 
 using Element = std::array<std::uint32_t, 5>;  // up to 4 vertex ids (0-based) and the reference
-
-double signed_volume(const double* p3, std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) {
-  double u[3], v[3], w[3];
-  for (int i = 0; i < 3; ++i) {
-    u[i] = p3[3 * b + i] - p3[3 * a + i];
-    v[i] = p3[3 * c + i] - p3[3 * a + i];
-    w[i] = p3[3 * d + i] - p3[3 * a + i];
-  }
-  return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]);
-}
-
-void fan(std::span<const std::uint32_t> cycle, std::uint32_t ref, std::vector<Element>& triangles) {
-  for (std::size_t i = 1; i + 1 < cycle.size(); ++i) triangles.push_back({cycle[0], cycle[i], cycle[i + 1], 0, ref});
-}
-
-// The cone from the polyhedron's first vertex over the fan triangles of the faces not containing it.
-void tetrahedralize(std::span<const std::uint32_t> faces, const Ragged& polygons, const double* p3, std::uint32_t ref,
-                    std::vector<Element>& tets) {
-  const std::uint32_t apex = polygons[faces[0]][0];
-  for (std::uint32_t f : faces) {
-    const auto cycle = polygons[f];
-    if (std::find(cycle.begin(), cycle.end(), apex) != cycle.end()) continue;
-    for (std::size_t i = 1; i + 1 < cycle.size(); ++i) {
-      Element t{apex, cycle[0], cycle[i], cycle[i + 1], ref};
-      if (signed_volume(p3, t[0], t[1], t[2], t[3]) < 0) std::swap(t[2], t[3]);
-      tets.push_back(t);
-    }
-  }
-}
 
 void append_section(std::string& out, const char* name, const std::vector<Element>& elements, int arity) {
   if (elements.empty()) return;
@@ -84,7 +56,10 @@ WrittenCounts write_medit(std::ostream& os, const CellComplex& cc, const Project
     const std::uint32_t n2 = cell_count(cc, CellKind::interior, 2);
     for (std::uint32_t c = m == 2 ? 0 : n2; m <= 3 && c < polygons.size(); ++c) {
       if (!polygons[c].empty()) {
-        fan(polygons[c], c >= n2 ? 1 : 0, triangles);
+        const std::uint32_t ref = c >= n2 ? 1 : 0;
+        for_each_fan_triangle(polygons[c], [&](std::uint32_t a, std::uint32_t b, std::uint32_t t) {
+          triangles.push_back({a, b, t, 0, ref});
+        });
       } else {
         ++counts.skipped;
       }
@@ -94,7 +69,11 @@ WrittenCounts write_medit(std::ostream& os, const CellComplex& cc, const Project
         const Ragged faces = polyhedron_faces(cc, kind, polygons);
         for (std::uint32_t c = 0; c < faces.size(); ++c)
           if (!faces[c].empty()) {
-            tetrahedralize(faces[c], polygons, p3.data(), kind == CellKind::boundary ? 1 : 0, tets);
+            const std::uint32_t ref = kind == CellKind::boundary ? 1 : 0;
+            for_each_cone_tetrahedron(faces[c], polygons, p3.data(),
+                                      [&](std::uint32_t a, std::uint32_t b, std::uint32_t t, std::uint32_t e) {
+                                        tets.push_back({a, b, t, e, ref});
+                                      });
           } else {
             ++counts.skipped;
           }

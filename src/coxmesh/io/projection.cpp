@@ -2,8 +2,10 @@
 #include "coxmesh/io/projection.h"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/QR>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "coxmesh/io/number_rows.h"
@@ -26,9 +28,74 @@ bool is_index_list(const std::string& s) {
   return !s.empty() && s.find_first_not_of("0123456789, ") == std::string::npos;
 }
 
+// The stereographic projection from a pole (given, or the best of 2d candidates) of the sphere
+// around the points' centroid with their mean distance to it as radius.
+Projection stereographic(int d, std::span<const double> points, std::span<const double> pole) {
+  Projection p;
+  p.d = d;
+  p.stereographic = true;
+  const std::size_t n = points.size() / std::max(d, 1);
+  Eigen::VectorXd c = Eigen::VectorXd::Zero(d);
+  for (std::size_t v = 0; v < n; ++v)
+    for (int i = 0; i < d; ++i) c[i] += points[v * d + i] / static_cast<double>(n);
+  Eigen::VectorXd best(d);
+  double radius = 0;
+  auto distance = [&](std::size_t v, const Eigen::VectorXd& x) {
+    double s = 0;
+    for (int i = 0; i < d; ++i) s += (points[v * d + i] - x[i]) * (points[v * d + i] - x[i]);
+    return std::sqrt(s);
+  };
+  if (!pole.empty()) {
+    for (int i = 0; i < d; ++i) best[i] = pole[i];
+    radius = (best - c).norm();
+    double spread = 0;
+    for (std::size_t v = 0; v < n; ++v) spread = std::max(spread, distance(v, c));
+    if (!(radius > 1e-9 * spread) && n)
+      throw InputError("--pole: the pole is the centroid of the points; give a point away from it");
+    if (!(radius > 0)) radius = 1;  // (no points: only the spec is being checked)
+  } else {
+    for (std::size_t v = 0; v < n; ++v) radius += distance(v, c) / static_cast<double>(n);
+    if (!(radius > 0)) radius = 1;
+    // Of the candidates c ± r·e_i, the one whose nearest point is farthest: the projection
+    // stretches the surroundings of the pole without bound.
+    double farthest = -1;
+    for (int i = 0; i < d; ++i)
+      for (double sign : {1.0, -1.0}) {
+        Eigen::VectorXd x = c;
+        x[i] += sign * radius;
+        double nearest = std::numeric_limits<double>::infinity();
+        for (std::size_t v = 0; v < n && nearest > farthest; ++v) nearest = std::min(nearest, distance(v, x));
+        if (nearest > farthest) farthest = nearest, best = x;
+      }
+  }
+  const Eigen::VectorXd normal = (best - c) / radius;
+  // An orthonormal basis of normal⊥: the last d − 1 columns of the Householder Q of the normal.
+  const Eigen::MatrixXd q = Eigen::HouseholderQR<Eigen::MatrixXd>(Eigen::MatrixXd(normal)).householderQ();
+  p.matrix.assign(3 * static_cast<std::size_t>(d), 0.0);
+  for (int r = 0; r < std::min(d - 1, 3); ++r)
+    for (int i = 0; i < d; ++i) p.matrix[r * d + i] = q(i, r + 1);
+  p.center.assign(best.data(), best.data() + d);
+  p.sphere_center.assign(c.data(), c.data() + d);
+  p.normal.assign(normal.data(), normal.data() + d);
+  p.radius = radius;
+  return p;
+}
+
 }  // namespace
 
-Projection make_projection(const std::string& spec, int d, std::span<const double> points) {
+Projection make_projection(const std::string& spec, int d, std::span<const double> points,
+                           std::span<const double> pole) {
+  if (!pole.empty() && spec != "stereographic")
+    throw InputError("--pole is the pole of --project stereographic; it does not apply to --project " +
+                     (spec.empty() ? std::string("1,2,3") : spec));
+  if (!pole.empty() && static_cast<int>(pole.size()) != d)
+    throw InputError("--pole has " + std::to_string(pole.size()) + " coordinates, expected d = " + std::to_string(d));
+  for (double x : pole)
+    if (!std::isfinite(x)) throw InputError("--pole must be finite");
+  if (spec == "stereographic") {
+    if (d < 2) throw InputError("--project stereographic needs d >= 2");
+    return stereographic(d, points, pole);
+  }
   Projection p;
   p.d = d;
   p.matrix.assign(3 * static_cast<std::size_t>(d), 0.0);
@@ -84,10 +151,20 @@ std::vector<double> project_points(const Projection& p, std::span<const double> 
   std::vector<double> x(d);
   for (std::size_t v = 0; v < n; ++v) {
     for (int i = 0; i < d; ++i) x[i] = points[v * d + i] - p.center[i];
+    double scale = 1;
+    if (p.stereographic) {  // the line from the pole through x meets the hyperplane at pole + (r/s)(x − pole)
+      double s = 0;
+      for (int i = 0; i < d; ++i) s -= p.normal[i] * x[i];
+      if (!(s > 1e-12 * p.radius))
+        throw InputError(
+            "--project stereographic: a vertex lies on the pole's side of its tangent hyperplane and has "
+            "no image; give another --pole");
+      scale = p.radius / s;
+    }
     for (int r = 0; r < 3; ++r) {
       double s = 0;
       for (int i = 0; i < d; ++i) s += p.matrix[r * d + i] * x[i];
-      out[3 * v + r] = s;
+      out[3 * v + r] = scale * s;
     }
   }
   return out;

@@ -7,6 +7,13 @@
 #include "coxmesh/io/mesh_formats.h"
 #include "coxmesh/io/number_text.h"
 #include "coxmesh/io/polygons.h"
+#include "coxmesh/io/simplices.h"
+
+// GCC 12 reports a false -Wrestrict in std::string::append once the number formatting is inlined
+// into the face loops.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wrestrict"
+#endif
 
 namespace coxmesh {
 
@@ -32,6 +39,37 @@ void append_points(std::string& out, const std::vector<double>& xs, int dim, con
   }
 }
 
+// Calls fn(vertex ids) for each face written: every non-empty polygon, or (simplices) each of its
+// fan triangles. Returns the number of faces.
+template <class Fn>
+std::size_t for_each_face(const Ragged& polygons, bool simplices, Fn&& fn) {
+  std::size_t faces = 0;
+  for (std::uint32_t c = 0; c < polygons.size(); ++c) {
+    if (polygons[c].empty()) continue;
+    if (!simplices) {
+      fn(polygons[c]);
+      ++faces;
+      continue;
+    }
+    for_each_fan_triangle(polygons[c], [&](std::uint32_t a, std::uint32_t b, std::uint32_t t) {
+      const std::uint32_t ids[3] = {a, b, t};
+      fn(std::span<const std::uint32_t>(ids));
+      ++faces;
+    });
+  }
+  return faces;
+}
+
+std::size_t open_polygons(const Ragged& polygons) {
+  std::size_t open = 0;
+  for (std::uint32_t c = 0; c < polygons.size(); ++c) open += polygons[c].empty() ? 1 : 0;
+  return open;
+}
+
+std::size_t face_count(const Ragged& polygons, bool simplices) {
+  return for_each_face(polygons, simplices, [](std::span<const std::uint32_t>) {});
+}
+
 void flush_if_large(std::ostream& os, std::string& out) {
   if (out.size() > (1u << 20)) {
     os.write(out.data(), static_cast<std::streamsize>(out.size()));
@@ -41,7 +79,8 @@ void flush_if_large(std::ostream& os, std::string& out) {
 
 }  // namespace
 
-WrittenCounts write_off(std::ostream& os, const CellComplex& cc, const Projection& projection, bool n_dimensional) {
+WrittenCounts write_off(std::ostream& os, const CellComplex& cc, const Projection& projection, bool n_dimensional,
+                        bool simplices) {
   require_polygons(cc, "OFF");
   const int d = cc.ambient_dimension;
   const std::vector<double> xs = vertex_coordinates(cc);
@@ -49,32 +88,33 @@ WrittenCounts write_off(std::ostream& os, const CellComplex& cc, const Projectio
   const Ragged polygons = oriented_polygon_cycles(cc, n_dimensional ? nullptr : p3.data());
   WrittenCounts counts;
   counts.points = xs.size() / d;
-  for (std::uint32_t c = 0; c < polygons.size(); ++c) (polygons[c].empty() ? counts.skipped : counts.cells) += 1;
+  counts.cells = face_count(polygons, simplices);
+  counts.skipped = open_polygons(polygons);
   std::string out = n_dimensional ? "nOFF\n" + std::to_string(d) + "\n" : "OFF\n";
   out += std::to_string(counts.points) + " " + std::to_string(counts.cells) + " 0\n";
   append_points(out, n_dimensional ? xs : p3, n_dimensional ? d : 3, "");
-  for (std::uint32_t c = 0; c < polygons.size(); ++c) {
-    if (polygons[c].empty()) continue;
-    append_number(out, static_cast<unsigned long long>(polygons[c].size()));
-    for (std::uint32_t v : polygons[c]) {
+  for_each_face(polygons, simplices, [&](std::span<const std::uint32_t> face) {
+    append_number(out, static_cast<unsigned long long>(face.size()));
+    for (std::uint32_t v : face) {
       out += ' ';
       append_number(out, static_cast<unsigned long long>(v));
     }
     out += '\n';
     flush_if_large(os, out);
-  }
+  });
   os.write(out.data(), static_cast<std::streamsize>(out.size()));
   return counts;
 }
 
-WrittenCounts write_ply(std::ostream& os, const CellComplex& cc, const Projection& projection) {
+WrittenCounts write_ply(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices) {
   require_polygons(cc, "PLY");
   const std::vector<double> p3 = project_points(projection, vertex_coordinates(cc));
   const Ragged polygons = oriented_polygon_cycles(cc, p3.data());
   WrittenCounts counts;
   counts.points = p3.size() / 3;
   if (counts.points > 0x7FFFFFFFu) throw InputError("PLY: more than 2^31 - 1 vertices");
-  for (std::uint32_t c = 0; c < polygons.size(); ++c) (polygons[c].empty() ? counts.skipped : counts.cells) += 1;
+  counts.cells = face_count(polygons, simplices);
+  counts.skipped = open_polygons(polygons);
   const std::string header = "ply\nformat binary_little_endian 1.0\ncomment written by coxmesh\nelement vertex " +
                              std::to_string(counts.points) +
                              "\nproperty double x\nproperty double y\nproperty double z\nelement face " +
@@ -82,9 +122,7 @@ WrittenCounts write_ply(std::ostream& os, const CellComplex& cc, const Projectio
   os.write(header.data(), static_cast<std::streamsize>(header.size()));
   os.write(reinterpret_cast<const char*>(p3.data()), static_cast<std::streamsize>(p3.size() * sizeof(double)));
   std::string out;
-  for (std::uint32_t c = 0; c < polygons.size(); ++c) {
-    const auto cycle = polygons[c];
-    if (cycle.empty()) continue;
+  for_each_face(polygons, simplices, [&](std::span<const std::uint32_t> cycle) {
     if (cycle.size() > 255) throw InputError("PLY: a polygon has more than 255 vertices");
     out += static_cast<char>(cycle.size());
     for (std::uint32_t v : cycle) {
@@ -92,12 +130,12 @@ WrittenCounts write_ply(std::ostream& os, const CellComplex& cc, const Projectio
       out.append(reinterpret_cast<const char*>(&i), 4);
     }
     flush_if_large(os, out);
-  }
+  });
   os.write(out.data(), static_cast<std::streamsize>(out.size()));
   return counts;
 }
 
-WrittenCounts write_obj(std::ostream& os, const CellComplex& cc, const Projection& projection) {
+WrittenCounts write_obj(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices) {
   if (cc.manifold_dimension < 1)
     throw InputError("OBJ holds lines and polygons, but this is a 0-manifold: use .vtu or .cxm");
   const std::vector<double> p3 = project_points(projection, vertex_coordinates(cc));
@@ -125,12 +163,8 @@ WrittenCounts write_obj(std::ostream& os, const CellComplex& cc, const Projectio
       }
   } else {
     const Ragged polygons = oriented_polygon_cycles(cc, p3.data());
-    for (std::uint32_t c = 0; c < polygons.size(); ++c)
-      if (!polygons[c].empty()) {
-        element('f', polygons[c]);
-      } else {
-        ++counts.skipped;
-      }
+    for_each_face(polygons, simplices, [&](std::span<const std::uint32_t> face) { element('f', face); });
+    counts.skipped = open_polygons(polygons);
   }
   os.write(out.data(), static_cast<std::streamsize>(out.size()));
   return counts;

@@ -8,6 +8,7 @@
 
 #include "coxmesh/io/mesh_formats.h"
 #include "coxmesh/io/polygons.h"
+#include "coxmesh/io/simplices.h"
 
 namespace coxmesh {
 
@@ -15,7 +16,7 @@ static_assert(std::endian::native == std::endian::little, "the VTU writer declar
 
 namespace {
 
-constexpr std::uint8_t kVertex = 1, kLine = 3, kPolygon = 7, kPolyhedron = 42;
+constexpr std::uint8_t kVertex = 1, kLine = 3, kTriangle = 5, kPolygon = 7, kTetrahedron = 10, kPolyhedron = 42;
 
 // The cells of the grid, built up cell by cell.
 struct Grid {
@@ -83,7 +84,7 @@ Block block(std::string xml, const std::vector<T>& v) {
 
 }  // namespace
 
-WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projection& projection) {
+WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices) {
   const int d = cc.ambient_dimension, m = cc.manifold_dimension;
   const std::vector<double> xs = vertex_coordinates(cc);
   const std::vector<double> p3 = project_points(projection, xs);
@@ -110,6 +111,14 @@ WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projectio
         }
     }
   };
+  // A polygon as itself, or (simplices) as its fan triangles.
+  auto add_polygon = [&](bool boundary, std::span<const std::uint32_t> cycle) {
+    if (!simplices) return g.add(kPolygon, 2, boundary, cycle);
+    for_each_fan_triangle(cycle, [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+      const std::array<std::uint32_t, 3> t{a, b, c};
+      g.add(kTriangle, 2, boundary, t);
+    });
+  };
   if (p <= 1) {
     add_level(CellKind::interior, p);
     if (m == 1) add_level(CellKind::boundary, 0);
@@ -119,7 +128,7 @@ WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projectio
     if (p == 2) {
       for (std::uint32_t c = 0; c < polygons.size(); ++c)
         if (!polygons[c].empty()) {
-          g.add(kPolygon, 2, c >= n2, polygons[c]);
+          add_polygon(c >= n2, polygons[c]);
         } else {
           ++counts.skipped;
         }
@@ -128,7 +137,13 @@ WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projectio
       for (CellKind kind : {CellKind::interior, CellKind::boundary}) {
         const Ragged faces = polyhedron_faces(cc, kind, polygons);
         for (std::uint32_t c = 0; c < faces.size(); ++c)
-          if (!faces[c].empty()) {
+          if (!faces[c].empty() && simplices) {
+            for_each_cone_tetrahedron(faces[c], polygons, p3.data(),
+                                      [&](std::uint32_t a, std::uint32_t b, std::uint32_t c2, std::uint32_t e) {
+                                        const std::array<std::uint32_t, 4> t{a, b, c2, e};
+                                        g.add(kTetrahedron, 3, kind == CellKind::boundary, t);
+                                      });
+          } else if (!faces[c].empty()) {
             add_polyhedron(g, kind == CellKind::boundary, faces[c], polygons, p3.data());
           } else {
             ++counts.skipped;
@@ -136,7 +151,7 @@ WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projectio
       }
       for (std::uint32_t c = n2; m == 3 && c < polygons.size(); ++c) {
         if (!polygons[c].empty()) {
-          g.add(kPolygon, 2, true, polygons[c]);
+          add_polygon(true, polygons[c]);
         } else {
           ++counts.skipped;
         }

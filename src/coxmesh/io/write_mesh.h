@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "coxmesh/cell_complex/cell_complex.h"
 #include "coxmesh/io/mesh_formats.h"
@@ -11,13 +12,13 @@
 
 namespace coxmesh {
 
-enum class MeshFormat { vtu, off, noff, ply, obj, medit, cxm };
+enum class MeshFormat { vtu, off, noff, ply, obj, medit, cxm, stl, msh };
 
-/// The format of a name: vtu, off, noff, ply, obj, mesh (or medit), cxm. Throws InputError listing
-/// the known names.
+/// The format of a name: vtu, off, noff, ply, obj, mesh (or medit), cxm, stl, msh. Throws InputError
+/// listing the known names.
 MeshFormat parse_format(const std::string& name);
 
-/// The format of a file name's extension (.vtu .off .ply .obj .mesh .cxm, any case). Throws
+/// The format of a file name's extension (.vtu .off .ply .obj .mesh .cxm .stl .msh, any case). Throws
 /// InputError for other extensions.
 MeshFormat format_of_path(const std::string& path);
 
@@ -25,13 +26,22 @@ MeshFormat format_of_path(const std::string& path);
 const char* format_name(MeshFormat format);
 
 struct WriteOptions {
-  std::string projection;  ///< --project: "", "i,j,k", "pca" or a matrix file (projection.h)
-  NativeInfo native;       ///< context stored in .cxm files
+  std::string projection;    ///< --project: "", "i,j,k", "pca", "stereographic" or a matrix file (projection.h)
+  std::vector<double> pole;  ///< --pole of "stereographic" (empty: chosen from the points)
+  NativeInfo native;         ///< context stored in .cxm files
+  /// --simplices: polygons and polyhedra as triangles and tetrahedra (simplices.h) in VTU, OFF,
+  /// PLY and OBJ; medit, STL and Gmsh are simplicial anyway, and .cxm stores the cells (refused).
+  bool simplices = false;
 };
+
+/// Whether `format` can hold an m-manifold in R^d with these options (the checks write_mesh makes
+/// first, for a front end to make before tracing). Throws InputError saying why not.
+void check_format(MeshFormat format, int d, int m, const WriteOptions& options);
 
 /// Writes the complex to `path` in `format`, atomically. `.off` writes OFF when the points are in
 /// R³ (d = 3, or a --project given) and nOFF otherwise. The projection and the format's needs (m ≥ 2
-/// for OFF and PLY) are checked before the file is created.
+/// for OFF and PLY; STL: m = 2 or 3 and 3D points, i.e. d = 3 or a --project given; Gmsh:
+/// 1 ≤ m ≤ 3) are checked before the file is created.
 ///   Throws InputError (bad projection, format unable to hold the complex, unwritable path); on
 ///   error an existing file at `path` is left untouched.
 WrittenCounts write_mesh(const std::string& path, MeshFormat format, const CellComplex& cc,

@@ -110,6 +110,20 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
           "the domain's boundary is tangent to the manifold along the cut (D = 0 contains M or touches it): the cut "
           "meshed is a perturbed one");
   }
+  if (o.refine) {
+    if (o.on_phase) o.on_phase("refining the vertices onto M");
+    RefineOptions ro;
+    ro.threads = trace.threads;
+    bool first_refiner = true;
+    report.refinement = refine_vertices(
+        report.cells, h,
+        [&]() -> std::pair<FunctionPtr, FunctionPtr> {
+          if (first_refiner) return first_refiner = false, std::pair<FunctionPtr, FunctionPtr>{f, domain};
+          const ManifoldFunctions w = make();
+          return {w.f, with_box(w.domain)};
+        },
+        ro);
+  }
   return report;
 }
 

@@ -11,6 +11,7 @@
 
 #include "coxmesh/cell_complex/cell_complex.h"
 #include "coxmesh/cell_complex/topology.h"
+#include "coxmesh/mesh/refine.h"
 #include "coxmesh/oracle/implicit_function.h"
 #include "coxmesh/tracing/trace_manifold.h"
 
@@ -32,6 +33,7 @@ struct MeshOptions {
   bool bounded_by_box = false;             ///< search_box also bounds the walk, as a domain
   std::uint64_t max_memory = 0;            ///< bytes for trace, complex and topology (0: no limit)
   bool check_regularity = true;            ///< warn where 0 is not a regular value of F (regularity.h)
+  bool refine = false;                     ///< move the vertices onto M at the end (refine.h)
   /// Limits (max_simplices, also derived from max_memory), threads, progress; skip_unusable_seeds
   /// is set when seeds were found automatically.
   TraceOptions trace;
@@ -47,11 +49,14 @@ struct MeshReport {
   std::uint64_t function_evaluations = 0, oracle_calls = 0;
   std::size_t seeds = 0, automatic_seeds = 0;
   double trace_seconds = 0, cell_complex_seconds = 0, topology_seconds = 0;
+  std::optional<RefinementReport> refinement;  ///< with options.refine
 };
 
 /// Meshes M on the triangulation t: seeds (given, F's own, or searched in the box), the walk from
 /// them with options.trace.threads workers (F once per lattice vertex in all), the cell complex and
-/// its topology (none when the run was stopped by a limit: the complex is then open).
+/// its topology (none when the run was stopped by a limit: the complex is then open), and with
+/// options.refine the vertices moved onto M (refine_vertices; the domain includes the box when it
+/// bounds the walk).
 ///   Throws InputError when no seed is found or none reaches M (saying whether F is not finite, or
 ///   its differential singular, there), SeedError, EvaluationError.
 ///
