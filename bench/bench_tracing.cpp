@@ -385,8 +385,8 @@ std::vector<Case> make_cases() {
                      gudhi_case(gct::make_product_function(circle, circle), seed, 2,
                                 gct::Function_affine_plane_in_Rd(Eigen::MatrixXd(n), p))});
   }
-  // The order of the issue: circle R², S² R³, torus R³, S² R⁴, S³ R⁴, S¹ R⁵, S² R⁵, S³ R⁶, flat torus
-  // R⁴, moment curve R⁶ in a ball, flat torus R⁴ cut by a hyperplane.
+  // The order of the tables in docs/benchmarks.md: circle R², S² R³, torus R³, S² R⁴, S³ R⁴, S¹ R⁵, S² R⁵, S³ R⁶, flat
+  // torus R⁴, moment curve R⁶ in a ball, flat torus R⁴ cut by a hyperplane.
   return cases;
 }
 
