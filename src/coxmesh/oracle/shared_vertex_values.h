@@ -20,15 +20,13 @@ namespace coxmesh {
 /// Thread-safe map lattice vertex → `stride` values. Lookups of stored vertices take no lock and
 /// write nothing shared: they read one open-addressing table whose slots are published with release
 /// stores after the key and values they point to, so its cache lines stay shared between cores
-/// instead of moving at every lookup (a lock per lookup cost a third of the parallel walk). The
-/// table is one block, so that it gets huge pages: 64 tables of a few hundred kilobytes, one per
-/// shard, missed the TLB at almost every lookup (on one thread the walk was 14-17 % slower than with
-/// an oracle's private cache; now 2 %). Storing a vertex takes the lock of its shard (one of 32, by
-/// hash), held while F is evaluated, so no vertex is evaluated twice; its key and values go to the
-/// shard's blocks, and its slot is claimed by compare-and-swap (other shards store at the same
-/// time). The table is replaced by one twice its size, with every shard locked, when a shard fills
-/// half its share of it; readers still probing the old one may miss the newest vertices and then
-/// take the lock.
+/// instead of moving at every lookup. The table is one block, so that it gets huge pages (one table
+/// per shard missed the TLB at almost every lookup: docs/benchmarks.md). Storing a vertex takes the
+/// lock of its shard (one of 32, by hash), held while F is evaluated, so no vertex is evaluated
+/// twice; its key and values go to the shard's blocks, and its slot is claimed by compare-and-swap
+/// (other shards store at the same time). The table is replaced by one twice its size, with every
+/// shard locked, when a shard fills half its share of it; readers still probing the old one may
+/// miss the newest vertices and then take the lock.
 class SharedVertexValues {
  public:
   SharedVertexValues(int d, int stride) : d_(d), stride_(stride) {
@@ -52,8 +50,7 @@ class SharedVertexValues {
       if (const double* found = find(v, hash)) return std::copy(found, found + stride_, out), false;
       // Each shard may fill up to 3/4 of its share of the table, so the table never fills up; the
       // table doubles when a shard fills half its share. (Counts per shard: one count for all
-      // shards moved between the cores at every store; with 2 threads on S^2 in R^3 the walk was
-      // 18-26 % slower than with private caches, 5-19 % with these.)
+      // shards would move between the cores at every store.)
       while (4 * (std::size_t{s.size} + 1) * kShards > 3 * table_.load(std::memory_order_acquire)->size()) {
         lock.unlock();  // (grow() takes every shard's lock)
         grow();

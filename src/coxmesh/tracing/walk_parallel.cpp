@@ -29,7 +29,7 @@ std::uint64_t ParallelWalk::oracle_calls() const {
 // The parallel walk appends its levels to S without indexing them (its workers look simplices up
 // in the indexes of two levels), and S is indexed at the end, and whenever it has grown fourfold
 // since it last was (so a walk gone astray wastes at most that much; every fourfold, not twofold:
-// each indexing grows the table into fresh memory, 30 % of its time on S^2 in R^3). A simplex met
+// each indexing grows the table into fresh memory, whose page faults are much of its time). A simplex met
 // twice shows up there; only an oracle for which the walk's graph is not symmetric (a cofacet with
 // more than two transverse facets) can cause that, and the walk is then redone sequentially, so
 // the result is the same for every thread count in every case.
