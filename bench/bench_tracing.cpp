@@ -409,7 +409,7 @@ std::vector<Case> make_cases() {
                      gudhi_case(gct::make_product_function(circle, circle), seed, 2)});
   }
   for (std::size_t i = small; i < cases.size(); ++i) cases[i].name += ", GUDHI's scale";
-  // The order of docs/benchmarks.md: circle R², S² R³, torus R³, S² R⁴, S³ R⁴, S¹ R⁵, S² R⁵, S³ R⁶,
+  // The order of the tables in docs/benchmarks.md: circle R², S² R³, torus R³, S² R⁴, S³ R⁴, S¹ R⁵, S² R⁵, S³ R⁶,
   // flat torus R⁴, moment curve R⁶ in a ball, flat torus R⁴ cut by a hyperplane; then GUDHI's scales.
   return cases;
 }

@@ -175,5 +175,6 @@ def test_triangles_cover_the_surface():
     a, b, c = V[T[:, 0]], V[T[:, 1]], V[T[:, 2]]
     volume = np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6
     assert 0.9 * 4 / 3 * np.pi < volume < 4 / 3 * np.pi
+    circle = coxmesh.trace(preset="sphere", m=1, dim=2)
     with pytest.raises(ValueError, match="surface"):
-        coxmesh.trace(preset="sphere", m=1, dim=2).triangles()
+        circle.triangles()

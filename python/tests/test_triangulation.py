@@ -62,7 +62,8 @@ def test_triangulation_construction_and_errors():
         coxmesh.Triangulation(np.zeros((3, 3)))
     with pytest.raises(ValueError):
         coxmesh.Triangulation(np.eye(3), [1, 2])
+    plane = coxmesh.Triangulation.coxeter(2)
     with pytest.raises(ValueError, match="NaN|finite"):
-        coxmesh.Triangulation.coxeter(2).locate([[0.1, float("nan")]])
+        plane.locate([[0.1, float("nan")]])
     with pytest.raises(ValueError, match="shape"):
-        coxmesh.Triangulation.coxeter(2).locate(np.zeros((4, 3)))
+        plane.locate(np.zeros((4, 3)))

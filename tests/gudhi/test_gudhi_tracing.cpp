@@ -140,8 +140,7 @@ struct CoxmeshOutcome : Outcome {
 };
 
 std::vector<std::pair<Simplex, std::vector<double>>> from_index(const coxmesh::PackedKeyIndex& index,
-                                                                const coxmesh::UninitializedHugeVector<double>& points,
-                                                                int d) {
+                                                                const coxmesh::PointArray& points, int d) {
   std::vector<std::pair<Simplex, std::vector<double>>> out;
   for (std::uint32_t i = 0; i < index.size(); ++i)
     out.emplace_back(index.simplex(i, d), std::vector<double>(points.begin() + i * d, points.begin() + (i + 1) * d));

@@ -1,6 +1,6 @@
 // The io layer: exact round trip of the native .cxm format, polygon cycles and polyhedron faces,
 // surface orientation, every writer read back and counted (OFF, nOFF, PLY, OBJ, medit), atomic
-// writes that leave the previous file untouched, projections, and expressions (values and errors).
+// writes that leave the previous file untouched, and projections.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -16,7 +16,6 @@
 #include "coxmesh/io/atomic_file.h"
 #include "coxmesh/io/polygons.h"
 #include "coxmesh/io/write_mesh.h"
-#include "coxmesh/oracle/expression_function.h"
 #include "coxmesh/oracle/implicit_oracle.h"
 #include "coxmesh/tracing/trace_manifold.h"
 
@@ -567,80 +566,4 @@ TEST(AtomicFile, ErrorsLeaveThePreviousFileUntouched) {
   EXPECT_THROW(write_mesh(target.string(), MeshFormat::vtu, cc, bad), InputError);
   EXPECT_EQ(read_text(target), "new");
   fs::remove_all(dir);
-}
-
-// ---- Expressions --------------------------------------------------------------------------------
-
-TEST(Expression, ValuesDimensionsAndAliases) {
-  const FunctionPtr f = expression_function("x^2+y^2+z^2-1");
-  EXPECT_EQ(f->ambient_dimension(), 3);
-  EXPECT_EQ(f->codimension(), 1);
-  double x[4] = {1, 2, 3, 4}, v[2];
-  f->evaluate(x, v);
-  EXPECT_EQ(v[0], 13.0);
-  const FunctionPtr g = expression_function("x1^2+x2^2-1; x3 - x4", 4);
-  EXPECT_EQ(g->codimension(), 2);
-  g->evaluate(x, v);
-  EXPECT_EQ(v[0], 4.0);
-  EXPECT_EQ(v[1], -1.0);
-  const FunctionPtr h = expression_function("x^2 + w = 2*pi");  // lhs = rhs, w = x4
-  EXPECT_EQ(h->ambient_dimension(), 4);
-  h->evaluate(x, v);
-  EXPECT_DOUBLE_EQ(v[0], 5.0 - 2 * M_PI);
-  EXPECT_EQ(expression_function("z")->ambient_dimension(), 3);
-  EXPECT_EQ(expression_function("x1", 5)->ambient_dimension(), 5);
-  EXPECT_EQ(expression_domain("x^2+y^2-4", 3)->codimension(), 1);
-  EXPECT_EQ(expression_function("x < 0 ? -x : x - 1; y", 3)->codimension(), 2);
-}
-
-TEST(Expression, MatchesTheCompiledSphereExactly) {
-  const FunctionPtr e = expression_function("x^2+y^2+z^2-1"), s = sphere(2, 3, 1.0);
-  double x[3] = {0.3, -0.7, 0.11}, a, b;
-  for (int i = 0; i < 100; ++i) {
-    x[i % 3] += 0.0137 * i;
-    e->evaluate(x, &a);
-    s->evaluate(x, &b);
-    EXPECT_EQ(a, b);
-  }
-  // And the traced complexes agree.
-  const Case ce{"expr", e, nullptr, 0.3}, cs{"sphere", s, nullptr, 0.3};
-  const Triangulation t = Triangulation::coxeter(3).with_longest_edge(0.3);
-  ImplicitOracle o1(t, e), o2(t, s);
-  const CellComplex c1 = build_cell_complex(trace_manifold(t, o1, {{1, 0, 0}}));
-  const CellComplex c2 = build_cell_complex(trace_manifold(t, o2, {{1, 0, 0}}));
-  expect_complexes_equal(c1, c2, "expression vs sphere");
-}
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
-TEST(Expression, Errors) {
-  auto has = [](const std::string& msg, const std::string& part) {
-    return msg.find(part) != std::string::npos
-               ? ::testing::AssertionSuccess()
-               : ::testing::AssertionFailure() << "'" << msg << "' lacks '" << part << "'";
-  };
-  std::string e = error_of([] { expression_function("x^2+*y"); });
-  EXPECT_TRUE(has(e, "position 5"));
-  EXPECT_TRUE(has(e, "x^2+*y"));
-  e = error_of([] { expression_function("x^2+y^2-1; (z"); });
-  EXPECT_TRUE(has(e, "position 14"));  // the end of the second equation, in the whole text
-  EXPECT_TRUE(has(error_of([] { expression_function("x^2+foo"); }), "unknown variable 'foo' at position 5"));
-  EXPECT_TRUE(has(error_of([] { expression_function("x0+y"); }), "unknown variable 'x0'"));
-  EXPECT_TRUE(has(error_of([] { expression_function("x3+x1", 2); }), "beyond the dimension d = 2"));
-  EXPECT_TRUE(has(error_of([] { expression_function("x+x5"); }), "only for d <= 4"));
-  EXPECT_TRUE(has(error_of([] { expression_function("x^2+y^2-1; x-y"); }), "fewer equations than the dimension"));
-  EXPECT_TRUE(has(error_of([] { expression_function("x"); }), "give --dim"));
-  EXPECT_TRUE(has(error_of([] { expression_function("x, y"); }), "separate equations with ';'"));
-  EXPECT_TRUE(has(error_of([] { expression_function("x+y;;z"); }), "empty equation"));
-  EXPECT_TRUE(has(error_of([] { expression_function("x=y=z"); }), "second '='"));
-  EXPECT_TRUE(has(error_of([] { expression_function("x", 40); }), "not supported"));
-  EXPECT_TRUE(has(error_of([] { expression_domain("x; y", 3); }), "2 expressions"));
-  EXPECT_TRUE(has(error_of([] { expression_domain("x4", 3); }), "beyond the dimension d = 3"));
 }

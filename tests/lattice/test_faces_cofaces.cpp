@@ -85,13 +85,14 @@ bool subset(const VertexSet& a, const VertexSet& b) { return std::includes(b.beg
 
 }  // namespace
 
-TEST(Faces, WorkedExamplesOfSpec) {
-  // §1.10 example 2.
+TEST(Faces, WorkedExamplesComputedWithGudhi) {
+  // (Every example here was produced by GUDHI's Coxeter_triangulation module.) The edges of the
+  // two triangles at the origin of R².
   EXPECT_EQ(faces(parse_simplex("(0,0) [{0},{1},{2}]"), 1),
             parse_all({"(0,0) [{0},{1,2}]", "(0,0) [{0,1},{2}]", "(1,0) [{1},{0,2}]"}));
   EXPECT_EQ(faces(parse_simplex("(0,0) [{1},{0},{2}]"), 1),
             parse_all({"(0,0) [{1},{0,2}]", "(0,0) [{0,1},{2}]", "(0,1) [{0},{1,2}]"}));
-  // §1.10 example 3.
+  // The faces of every dimension of a tetrahedron of R³.
   const Simplex s = parse_simplex("(0,0,0) [{0},{1},{2},{3}]");
   EXPECT_EQ(faces(s, 1), parse_all({"(0,0,0) [{0},{1,2,3}]", "(0,0,0) [{0,1},{2,3}]", "(0,0,0) [{0,1,2},{3}]",
                                     "(1,0,0) [{1},{0,2,3}]", "(1,0,0) [{1,2},{0,3}]", "(1,1,0) [{2},{0,1,3}]"}));
@@ -101,16 +102,16 @@ TEST(Faces, WorkedExamplesOfSpec) {
   EXPECT_THROW(FaceEnumerator(s, 4), InputError);
 }
 
-TEST(Cofaces, WorkedExamplesOfSpec) {
-  const Simplex v = parse_simplex("(0,0) [{0,1,2}]");  // §1.10 example 1
+TEST(Cofaces, WorkedExamplesComputedWithGudhi) {
+  const Simplex v = parse_simplex("(0,0) [{0,1,2}]");  // the origin of R²: 6 edges, 6 triangles
   EXPECT_EQ(cofaces(v, 1), parse_all({"(0,0) [{0,1},{2}]", "(-1,-1) [{0,1},{2}]", "(0,0) [{1},{0,2}]",
                                       "(0,-1) [{1},{0,2}]", "(0,0) [{0},{1,2}]", "(-1,0) [{0},{1,2}]"}));
   EXPECT_EQ(cofaces(v, 2), parse_all({"(0,0) [{0},{1},{2}]", "(0,0) [{1},{0},{2}]", "(-1,-1) [{0},{1},{2}]",
                                       "(0,-1) [{1},{0},{2}]", "(-1,0) [{0},{1},{2}]", "(-1,-1) [{1},{0},{2}]"}));
-  // §1.10 example 2.
+  // The triangles on two edges at the origin.
   EXPECT_EQ(cofaces(parse_simplex("(0,0) [{0,1},{2}]"), 2), parse_all({"(0,0) [{0},{1},{2}]", "(0,0) [{1},{0},{2}]"}));
   EXPECT_EQ(cofaces(parse_simplex("(0,0) [{0},{1,2}]"), 2), parse_all({"(0,0) [{0},{1},{2}]", "(0,-1) [{1},{0},{2}]"}));
-  // §1.10 example 4.
+  // An edge of R³ and its cofaces of every dimension.
   const Simplex e = parse_simplex("(0,0,0) [{0,1},{2,3}]");
   EXPECT_EQ(cofaces(e, 2), parse_all({"(0,0,0) [{0},{1},{2,3}]", "(0,0,0) [{1},{0},{2,3}]", "(0,0,0) [{0,1},{2},{3}]",
                                       "(0,0,-1) [{2},{0,1},{3}]"}));
@@ -120,7 +121,7 @@ TEST(Cofaces, WorkedExamplesOfSpec) {
 }
 
 TEST(Cofaces, GudhiUnitTestInDimension10) {
-  // §1.10 example 5.
+  // GUDHI's own unit test.
   const Simplex s = parse_simplex("(0,0,0,0,0,0,0,0,0,0) [{5},{2},{3,7},{4,9},{0,6,8},{1,10}]");
   EXPECT_EQ(s.dimension(), 5);
   EXPECT_EQ(faces(s, 4).size(), 6u);

@@ -28,7 +28,7 @@ RefineFunctions same(FunctionPtr f, FunctionPtr domain = nullptr) {
   return [f, domain] { return std::pair<FunctionPtr, FunctionPtr>{f, domain}; };
 }
 
-double max_abs(const ImplicitFunction& f, const UninitializedHugeVector<double>& xs) {
+double max_abs(const ImplicitFunction& f, const PointArray& xs) {
   const int d = f.ambient_dimension();
   std::vector<double> value(f.codimension());
   double m = 0;

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
+#include <boost/multiprecision/cpp_int.hpp>
+#include <boost/rational.hpp>
 #include <cmath>
 #include <numbers>
 #include <numeric>
@@ -18,56 +20,11 @@ using namespace coxmesh::quality;
 
 namespace {
 
-// ---- Exact rationals (128-bit, every operation checked for overflow) -------------------------------
+// ---- Exact rationals (Boost.Rational over unbounded integers: no overflow) -------------------------
 
-__extension__ typedef __int128 i128;
-
-i128 checked_mul(i128 a, i128 b) {
-  i128 r;
-  if (__builtin_mul_overflow(a, b, &r)) throw std::overflow_error("Frac overflow");
-  return r;
-}
-i128 checked_add(i128 a, i128 b) {
-  i128 r;
-  if (__builtin_add_overflow(a, b, &r)) throw std::overflow_error("Frac overflow");
-  return r;
-}
-i128 gcd128(i128 a, i128 b) {
-  if (a < 0) a = -a;
-  if (b < 0) b = -b;
-  while (b) {
-    const i128 t = a % b;
-    a = b, b = t;
-  }
-  return a;
-}
-
-struct Frac {
-  i128 n = 0, d = 1;
-  Frac(long long v = 0) : n(v) {}  // NOLINT: implicit from integers
-  Frac(i128 num, i128 den) : n(num), d(den) {
-    if (d < 0) n = -n, d = -d;
-    const i128 g = gcd128(n, d);
-    if (g > 1) n /= g, d /= g;
-  }
-  friend Frac operator+(Frac a, Frac b) {
-    const i128 g = gcd128(a.d, b.d);
-    return {checked_add(checked_mul(a.n, b.d / g), checked_mul(b.n, a.d / g)), checked_mul(a.d / g, b.d)};
-  }
-  friend Frac operator-(Frac a, Frac b) { return a + Frac(-b.n, b.d); }
-  friend Frac operator*(Frac a, Frac b) {
-    const i128 g1 = gcd128(a.n, b.d), g2 = gcd128(b.n, a.d);
-    return {checked_mul(a.n / (g1 ? g1 : 1), b.n / (g2 ? g2 : 1)),
-            checked_mul(a.d / (g2 ? g2 : 1), b.d / (g1 ? g1 : 1))};
-  }
-  friend Frac operator/(Frac a, Frac b) {
-    if (b.n == 0) throw std::domain_error("Frac division by zero");
-    return a * Frac(b.d, b.n);
-  }
-  friend bool operator==(Frac a, Frac b) { return a.n == b.n && a.d == b.d; }
-  int sign() const { return n > 0 ? 1 : n < 0 ? -1 : 0; }
-  long double value() const { return static_cast<long double>(n) / static_cast<long double>(d); }
-};
+using Frac = boost::rational<boost::multiprecision::cpp_int>;
+int sign(const Frac& x) { return x > 0 ? 1 : x < 0 ? -1 : 0; }
+long double value(const Frac& x) { return boost::rational_cast<long double>(x); }
 
 using FracMatrix = std::vector<std::vector<Frac>>;
 
@@ -79,13 +36,13 @@ FracMatrix inverse(FracMatrix a, Frac& det) {
   det = 1;
   for (std::size_t c = 0; c < n; ++c) {
     std::size_t p = c;
-    while (a[p][c].sign() == 0) ++p;
+    while (sign(a[p][c]) == 0) ++p;
     if (p != c) std::swap(a[p], a[c]), std::swap(inv[p], inv[c]), det = Frac(0) - det;
     const Frac pivot = a[c][c];
     det = det * pivot;
     for (std::size_t k = 0; k < n; ++k) a[c][k] = a[c][k] / pivot, inv[c][k] = inv[c][k] / pivot;
     for (std::size_t r = 0; r < n; ++r) {
-      if (r == c || a[r][c].sign() == 0) continue;
+      if (r == c || sign(a[r][c]) == 0) continue;
       const Frac f = a[r][c];
       for (std::size_t k = 0; k < n; ++k) a[r][k] = a[r][k] - f * a[c][k], inv[r][k] = inv[r][k] - f * inv[c][k];
     }
@@ -220,8 +177,8 @@ ExactAlcove exact_alcove(Family f, int d) {
   for (int i = 0; i <= d; ++i)
     for (int j = i + 1; j <= d; ++j) {
       const Frac x = edge2(i, j);
-      if ((x - e.longest2).sign() > 0) e.longest2 = x;
-      if ((x - e.shortest2).sign() < 0) e.shortest2 = x;
+      if (sign(x - e.longest2) > 0) e.longest2 = x;
+      if (sign(x - e.shortest2) < 0) e.shortest2 = x;
     }
   Frac det;
   const FracMatrix minv = inverse(m, det);
@@ -235,7 +192,7 @@ ExactAlcove exact_alcove(Family f, int d) {
   for (int i = 0; i < d; ++i) e.heights2.push_back(Frac(1) / minv[i][i]);
   e.min_height2 = e.heights2[0];
   for (const Frac& h : e.heights2)
-    if ((h - e.min_height2).sign() < 0) e.min_height2 = h;
+    if (sign(h - e.min_height2) < 0) e.min_height2 = h;
   // Circumcentre c = Σ a_i v_i with 2⟨c, v_i⟩ = |v_i|²: a = ½·M^{-1}·diag(M).
   std::vector<Frac> a(d);
   for (int i = 0; i < d; ++i)
@@ -592,28 +549,28 @@ TEST(Exact, RationalComputationAgreesWithDoublesForEveryType) {
     const ExactAlcove e = exact_alcove(f, d);
     const CoxeterQuality q = coxeter_quality(f, d, 0);
     const SimplexMeasures& m = q.measures;
-    expect_rel(m.longest_edge * m.longest_edge, e.longest2.value(), 1e-12, n + " L²");
-    expect_rel(m.shortest_edge * m.shortest_edge, e.shortest2.value(), 1e-12, n + " l²");
-    expect_rel(m.min_height * m.min_height, e.min_height2.value(), 1e-12, n + " h²");
-    expect_rel(m.circumradius * m.circumradius, e.circumradius2.value(), 1e-12, n + " R²");
-    expect_rel(m.volume * m.volume / static_cast<double>(e.volume2.value()), 1, 1e-12, n + " vol²");
+    expect_rel(m.longest_edge * m.longest_edge, value(e.longest2), 1e-12, n + " L²");
+    expect_rel(m.shortest_edge * m.shortest_edge, value(e.shortest2), 1e-12, n + " l²");
+    expect_rel(m.min_height * m.min_height, value(e.min_height2), 1e-12, n + " h²");
+    expect_rel(m.circumradius * m.circumradius, value(e.circumradius2), 1e-12, n + " R²");
+    expect_rel(m.volume * m.volume / static_cast<double>(value(e.volume2)), 1, 1e-12, n + " vol²");
     for (int i = 0; i <= d; ++i) {
-      expect_rel(m.heights[i] * m.heights[i], e.heights2[i].value(), 1e-12, n + " h_i²");
-      EXPECT_NEAR(m.circumcentre_barycentric[i], static_cast<double>(e.barycentric[i].value()), 1e-12) << n;
+      expect_rel(m.heights[i] * m.heights[i], value(e.heights2[i]), 1e-12, n + " h_i²");
+      EXPECT_NEAR(m.circumcentre_barycentric[i], static_cast<double>(value(e.barycentric[i])), 1e-12) << n;
     }
     // Delaunay status, decided exactly by the signs of the barycentric coordinates.
     int lowest = 1;
-    for (const Frac& x : e.barycentric) lowest = std::min(lowest, x.sign());
+    for (const Frac& x : e.barycentric) lowest = std::min(lowest, sign(x));
     const DelaunayStatus exact = lowest > 0    ? DelaunayStatus::yes
                                  : lowest == 0 ? DelaunayStatus::degenerate
                                                : DelaunayStatus::no;
     EXPECT_EQ(q.delaunay.status, exact) << n;
     if (exact == DelaunayStatus::yes) {
       long double delta = 1e300L;
-      const long double R = std::sqrt(e.circumradius2.value());
+      const long double R = std::sqrt(value(e.circumradius2));
       for (int j = 0; j <= d; ++j)
-        delta = std::min(delta, std::sqrt((e.circumradius2 + Frac(4) * e.heights2[j] * e.barycentric[j]).value()) - R);
-      expect_rel(*q.delaunay.protection, delta / std::sqrt(e.longest2.value()), 1e-12, n + " δ/L");
+        delta = std::min(delta, std::sqrt(value(e.circumradius2 + Frac(4) * e.heights2[j] * e.barycentric[j])) - R);
+      expect_rel(*q.delaunay.protection, delta / std::sqrt(value(e.longest2)), 1e-12, n + " δ/L");
     }
     // vol(alcove)·|W| = covolume of the coroot lattice, exactly.
     const Frac w = Frac(static_cast<long long>(weyl_group_order(f, d)));

@@ -21,8 +21,7 @@ inline void expect_identical(const coxmesh::TraceResult& a, const coxmesh::Trace
   for (std::uint32_t i = 0; i < a.boundary_simplices.size(); ++i)
     ASSERT_EQ(std::memcmp(a.boundary_simplices.key(i), b.boundary_simplices.key(i), 4 * w), 0) << what;
   // Bitwise equality of the points (memcmp would be passed null for empty vectors).
-  auto same_bits = [](const coxmesh::UninitializedHugeVector<double>& x,
-                      const coxmesh::UninitializedHugeVector<double>& y) {
+  auto same_bits = [](const coxmesh::PointArray& x, const coxmesh::PointArray& y) {
     return x.size() == y.size() && (x.empty() || std::memcmp(x.data(), y.data(), 8 * x.size()) == 0);
   };
   EXPECT_TRUE(same_bits(a.points, b.points)) << what;

@@ -3,6 +3,7 @@
 
 #include <vector>
 
+#include "coxmesh/arrays.h"
 #include "coxmesh/lattice/packed_index.h"
 #include "coxmesh/tracing/trace_manifold.h"
 
@@ -15,12 +16,11 @@ struct CellLevel {
   static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
   // (arrays that the construction writes in full, by several threads: not zeroed first)
   PackedKeyIndex simplices{1};  ///< ambient simplex of each cell; id = cell id
-  UninitializedHugeVector<std::uint32_t> facet_offsets{
-      0};                                            ///< CSR: facets of c are facet_ids[offsets[c] .. offsets[c+1])
-  UninitializedHugeVector<std::uint32_t> facet_ids;  ///< cells of dimension j − 1 of the same kind
+  IndexArray facet_offsets{0};  ///< CSR: facets of c are facet_ids[offsets[c] .. offsets[c+1])
+  IndexArray facet_ids;         ///< cells of dimension j − 1 of the same kind
   /// Interior cells (j ≥ 1) with a domain: the boundary cell of dimension j − 1 on the same
   /// simplex (it closes the cut polytope), or kNone. Empty without a domain.
-  UninitializedHugeVector<std::uint32_t> boundary_facet;
+  IndexArray boundary_facet;
 
   std::uint32_t size() const { return simplices.size(); }
   std::span<const std::uint32_t> facets(std::uint32_t c) const {
@@ -34,7 +34,7 @@ struct CellLevel {
 struct CellComplex {
   int ambient_dimension = 0, manifold_dimension = 0;
   std::vector<CellLevel> interior, boundary;
-  UninitializedHugeVector<double> vertices, boundary_vertices;
+  PointArray vertices, boundary_vertices;
 
   std::size_t bytes() const;  ///< memory held, for reports
 };

@@ -121,7 +121,7 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
       for (std::size_t t = 0; t < chunks_of(0); ++t) occurrences += buffers[0][t].ids.size();
       const std::size_t cells0 = std::min(prev.size(), batch_cells);
       incidences.reserve(occurrences * prev.size() / cells0 * 9 / 8);
-      // (the index at batch 0's rate too, which came out 0-10 % above the level's size)
+      // (the index at batch 0's rate too: it comes out slightly above the level's size)
       const std::size_t cells = std::size_t{level.simplices.size()} * prev.size() / cells0;
       if (batches > 2) level.simplices.reserve(std::min<std::size_t>(cells, PackedKeyIndex::kMaxEntries));
     }
@@ -133,7 +133,7 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
     // One lane per worker: the numbering lane numbers, then helps with the chunks. Lanes are taken
     // in order, lane 0 by the calling thread as a rule, so with the numbering lane turning round by
     // round a batch is mostly numbered by the worker that enumerated it: its keys are in that
-    // core's caches (numbering them on the other core cost 15 % more).
+    // core's caches (numbering them on the other core costs more: docs/benchmarks.md).
     const std::size_t n_enumerate = chunks_of(round), n_chunks = n_enumerate + chunks_of(written);
     const std::size_t lanes = static_cast<std::size_t>(pool.size());
     const std::size_t numbering_lane = static_cast<std::size_t>(round) % lanes;

@@ -7,13 +7,13 @@ std::uint32_t PackedKeyIndex::index_appended() {
   std::size_t capacity = slots_.size();
   while (2 * static_cast<std::size_t>(size_) > capacity) capacity *= 2;  // load ≤ 1/2, as insert_at
   if (capacity != slots_.size()) rehash(capacity);
-  // Least significant digit radix sort of the entries by home slot (tag >> shift_): then every
-  // insertion below probes next to the previous one, in one sweep over the table.
-  const int bits = 32 - shift_;
+  // Least significant digit radix sort of the entries by home slot (the leading bits of the tag):
+  // then every insertion below probes next to the previous one, in one sweep over the table.
+  const int bits = probe_.bits();
   constexpr int kDigit = 11;
   UninitializedHugeVector<std::uint64_t> sorted(unindexed_.size());
   for (int low = 0; low < bits; low += kDigit) {
-    const int width = std::min(kDigit, bits - low), from = 32 + shift_ + low;
+    const int width = std::min(kDigit, bits - low), from = 64 - bits + low;
     std::vector<std::uint32_t> start((std::size_t{1} << width) + 1, 0);
     for (const std::uint64_t e : unindexed_) ++start[((e >> from) & ((1u << width) - 1)) + 1];
     for (std::size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
@@ -22,13 +22,10 @@ std::uint32_t PackedKeyIndex::index_appended() {
   }
   std::uint32_t duplicate = kAbsent;
   for (const std::uint64_t entry : unindexed_) {
-    const std::uint32_t tag = static_cast<std::uint32_t>(entry >> 32), id = static_cast<std::uint32_t>(entry) - 1;
-    std::size_t s = home(tag);
-    bool present = false;
-    for (; slots_[s] != 0 && !present; s = (s + 1) & mask_)
-      present = static_cast<std::uint32_t>(slots_[s] >> 32) == tag &&
-                equal(static_cast<std::uint32_t>(slots_[s]) - 1, key(id));
-    if (!present)
+    const std::uint32_t id = LinearProbe::payload(entry) - 1;
+    const std::size_t s = probe_.find(LinearProbe::tag_of(entry), slot_loader(),
+                                      [&](std::uint32_t payload) { return equal(payload - 1, key(id)); });
+    if (slots_[s] == 0)
       slots_[s] = entry;
     else if (duplicate == kAbsent || id < duplicate)
       duplicate = id;

@@ -1,15 +1,14 @@
 // Compact storage of lattice objects (vertices, packed simplices): a hash index from fixed-width
 // keys of 32-bit words to dense ids 0, 1, 2, … in insertion order (deterministic output order).
-// Open addressing with linear probing; each slot holds the top 32 bits of the hash and the id, so
-// probes compare keys only on a hash match. A key's home slot is given by the top bits of its hash
-// (the leading bits of the stored 32), so growing the table moves slots without reading or
-// rehashing a single key, in one mostly sequential pass (the price: neighbouring slots share the
-// leading bits of their tags, so with 2^b slots a tag tells apart 32 − b bits, and one probe in
-// 2^(32−b) compares a key needlessly). Keys live contiguously in one array: no node per entry.
+// Open addressing with linear probing (util/linear_probe.h); each slot holds the top 32 bits of the
+// hash and the id + 1, so probes compare keys only on a hash match. A key's home slot is given by
+// the top bits of its hash, so growing the table moves slots without reading or rehashing a single
+// key (the price: neighbouring slots share the leading bits of their tags, so with 2^b slots a tag
+// tells apart 32 − b bits, and one probe in 2^(32−b) compares a key needlessly). Keys live
+// contiguously in one array: no node per entry.
 #pragma once
 
 #include <algorithm>
-#include <bit>
 #include <cstdint>
 #include <span>
 #include <utility>
@@ -17,6 +16,7 @@
 
 #include "coxmesh/lattice/simplex.h"
 #include "coxmesh/util/huge_page_allocator.h"
+#include "coxmesh/util/linear_probe.h"
 
 namespace coxmesh {
 
@@ -45,25 +45,17 @@ class PackedKeyIndex {
 
   /// Id of the key, or kAbsent.
   std::uint32_t find(const std::uint32_t* key, std::uint64_t hash) const {
-    const std::uint32_t tag = static_cast<std::uint32_t>(hash >> 32);
-    for (std::size_t s = home(tag);; s = (s + 1) & mask_) {
-      const std::uint64_t slot = slots_[s];
-      if (slot == 0) return kAbsent;
-      if (static_cast<std::uint32_t>(slot >> 32) == tag && equal(static_cast<std::uint32_t>(slot) - 1, key))
-        return static_cast<std::uint32_t>(slot) - 1;
-    }
+    std::size_t slot;
+    return find(key, hash, slot);
   }
   std::uint32_t find(const std::uint32_t* key) const { return find(key, hash_words(key, words_)); }
 
   /// find() that also reports where an absent key would go, for insert_at().
   std::uint32_t find(const std::uint32_t* key, std::uint64_t hash, std::size_t& slot) const {
-    const std::uint32_t tag = static_cast<std::uint32_t>(hash >> 32);
-    for (slot = home(tag);; slot = (slot + 1) & mask_) {
-      const std::uint64_t entry = slots_[slot];
-      if (entry == 0) return kAbsent;
-      if (static_cast<std::uint32_t>(entry >> 32) == tag && equal(static_cast<std::uint32_t>(entry) - 1, key))
-        return static_cast<std::uint32_t>(entry) - 1;
-    }
+    slot = probe_.find(LinearProbe::tag_of(hash), slot_loader(),
+                       [&](std::uint32_t payload) { return equal(payload - 1, key); });
+    const std::uint64_t entry = slots_[slot];
+    return entry == 0 ? kAbsent : LinearProbe::payload(entry) - 1;
   }
   /// Inserts an absent key at the slot find() reported, with no insert in between; returns its id.
   std::uint32_t insert_at(std::size_t slot, const std::uint32_t* key, std::uint64_t hash) {
@@ -72,22 +64,16 @@ class PackedKeyIndex {
     if (size_ >= kMaxEntries) throw InputError("more than 2^31 - 1 entries in one index");
     const std::uint32_t id = size_++;
     keys_.insert(keys_.end(), key, key + words_);
-    slots_[slot] = (hash >> 32 << 32) | (id + 1);
+    slots_[slot] = LinearProbe::entry(hash, id + 1);
     if (2 * static_cast<std::size_t>(size_) > slots_.size()) rehash(2 * slots_.size());  // load ≤ 1/2
     return id;
   }
 
   /// {id, true} if the key was inserted, {existing id, false} if it was there.
   std::pair<std::uint32_t, bool> insert(const std::uint32_t* key, std::uint64_t hash) {
-    const std::uint32_t tag = static_cast<std::uint32_t>(hash >> 32);
-    std::size_t s = home(tag);
-    for (;; s = (s + 1) & mask_) {
-      const std::uint64_t slot = slots_[s];
-      if (slot == 0) break;
-      if (static_cast<std::uint32_t>(slot >> 32) == tag && equal(static_cast<std::uint32_t>(slot) - 1, key))
-        return {static_cast<std::uint32_t>(slot) - 1, false};
-    }
-    return {insert_at(s, key, hash), true};
+    std::size_t slot;
+    if (const std::uint32_t id = find(key, hash, slot); id != kAbsent) return {id, false};
+    return {insert_at(slot, key, hash), true};
   }
   std::pair<std::uint32_t, bool> insert(const std::uint32_t* key) { return insert(key, hash_words(key, words_)); }
 
@@ -141,7 +127,7 @@ class PackedKeyIndex {
   void set_appended(std::uint32_t id, const std::uint32_t* key, std::uint64_t hash) {
     COXMESH_DEBUG_ASSERT(id < size_ && size_ - id <= unindexed_.size());
     std::copy_n(key, words_, keys_.data() + static_cast<std::size_t>(id) * words_);
-    unindexed_[unindexed_.size() - (size_ - id)] = (hash >> 32 << 32) | (id + 1);
+    unindexed_[unindexed_.size() - (size_ - id)] = LinearProbe::entry(hash, id + 1);
   }
   /// Keys appended and not indexed yet.
   std::size_t unindexed() const { return unindexed_.size(); }
@@ -168,14 +154,14 @@ class PackedKeyIndex {
   /// Hints the cache to load the first slot probed for this hash (batched inserts with hashes
   /// computed ahead).
   void prefetch(std::uint64_t hash) const {
-    __builtin_prefetch(slots_.data() + home(static_cast<std::uint32_t>(hash >> 32)));
+    __builtin_prefetch(slots_.data() + probe_.home(LinearProbe::tag_of(hash)));
   }
   /// Hints the cache to load the stored key that the home slot of this hash names, if the tags match.
   void prefetch_key(std::uint64_t hash) const {
-    const std::uint32_t tag = static_cast<std::uint32_t>(hash >> 32);
-    const std::uint64_t slot = slots_[home(tag)];
-    if (slot != 0 && static_cast<std::uint32_t>(slot >> 32) == tag)
-      __builtin_prefetch(keys_.data() + static_cast<std::size_t>(static_cast<std::uint32_t>(slot) - 1) * words_);
+    const std::uint32_t tag = LinearProbe::tag_of(hash);
+    const std::uint64_t slot = slots_[probe_.home(tag)];
+    if (slot != 0 && LinearProbe::tag_of(slot) == tag)
+      __builtin_prefetch(keys_.data() + static_cast<std::size_t>(LinearProbe::payload(slot) - 1) * words_);
   }
 
   /// Removes every key; keeps the memory for reuse.
@@ -204,27 +190,23 @@ class PackedKeyIndex {
     for (int i = 0; i < words_; ++i) diff |= a[i] ^ key[i];
     return diff == 0;
   }
-  // Home slot of a hash tag: its leading log2(capacity) bits (capacity ≤ 2^32).
-  std::size_t home(std::uint32_t tag) const { return static_cast<std::size_t>(tag) >> shift_; }
-  // Slots are moved by their tags alone. Home slots keep their order when the table doubles, so
-  // a pass in slot order writes the new table almost sequentially.
+  struct SlotLoad {
+    const std::uint64_t* slots;
+    std::uint64_t operator()(std::size_t s) const { return slots[s]; }
+  };
+  SlotLoad slot_loader() const { return {slots_.data()}; }
+  // Slots are moved by their tags alone (see linear_probe.h), almost sequentially.
   void rehash(std::size_t capacity) {
     UninitializedHugeVector<std::uint64_t> old = zeroed_huge_vector<std::uint64_t>(capacity);
     old.swap(slots_);
-    mask_ = capacity - 1;
-    shift_ = 32 - std::countr_zero(capacity);
-    for (const std::uint64_t slot : old) {
-      if (slot == 0) continue;
-      std::size_t s = home(static_cast<std::uint32_t>(slot >> 32));
-      while (slots_[s] != 0) s = (s + 1) & mask_;
-      slots_[s] = slot;
-    }
+    probe_ = LinearProbe(capacity);
+    for (const std::uint64_t slot : old)
+      if (slot != 0) slots_[probe_.find_empty(LinearProbe::tag_of(slot), slot_loader())] = slot;
   }
 
   int words_;
   std::uint32_t size_ = 0;
-  std::size_t mask_ = 0;
-  int shift_ = 32;
+  LinearProbe probe_;
   UninitializedHugeVector<std::uint32_t> keys_;
   UninitializedHugeVector<std::uint64_t> slots_;
   UninitializedHugeVector<std::uint64_t> unindexed_;  // slot entries of appended keys, in id order

@@ -9,8 +9,9 @@
 // list is in docs/formats.md.
 //
 // Not thread-safe: each object owns one muparser parser per equation bound to one array of
-// variables, so evaluate() writes into the object. Use one object per thread (tracing is
-// single-threaded, so one object per trace is enough).
+// variables, so evaluate() writes into the object. Use one object per thread: the multi-threaded
+// tracer asks for one per worker (ManifoldMaker in mesh/mesh_manifold.h, OracleFactory in
+// tracing/trace_manifold.h), and separate objects share nothing.
 #pragma once
 
 #include <memory>

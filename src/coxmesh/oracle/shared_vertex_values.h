@@ -13,21 +13,20 @@
 #include <vector>
 
 #include "coxmesh/lattice/packed_index.h"
+#include "coxmesh/util/linear_probe.h"
 
 namespace coxmesh {
 
 /// Thread-safe map lattice vertex → `stride` values. Lookups of stored vertices take no lock and
 /// write nothing shared: they read one open-addressing table whose slots are published with release
 /// stores after the key and values they point to, so its cache lines stay shared between cores
-/// instead of moving at every lookup (a lock per lookup cost a third of the parallel walk). The
-/// table is one block, so that it gets huge pages: 64 tables of a few hundred kilobytes, one per
-/// shard, missed the TLB at almost every lookup (on one thread the walk was 14-17 % slower than with
-/// an oracle's private cache; now 2 %). Storing a vertex takes the lock of its shard (one of 32, by
-/// hash), held while F is evaluated, so no vertex is evaluated twice; its key and values go to the
-/// shard's blocks, and its slot is claimed by compare-and-swap (other shards store at the same
-/// time). The table is replaced by one twice its size, with every shard locked, when a shard fills
-/// half its share of it; readers still probing the old one may miss the newest vertices and then
-/// take the lock.
+/// instead of moving at every lookup. The table is one block, so that it gets huge pages (one table
+/// per shard missed the TLB at almost every lookup: docs/benchmarks.md). Storing a vertex takes the
+/// lock of its shard (one of 32, by hash), held while F is evaluated, so no vertex is evaluated
+/// twice; its key and values go to the shard's blocks, and its slot is claimed by compare-and-swap
+/// (other shards store at the same time). The table is replaced by one twice its size, with every
+/// shard locked, when a shard fills half its share of it; readers still probing the old one may
+/// miss the newest vertices and then take the lock.
 class SharedVertexValues {
  public:
   SharedVertexValues(int d, int stride) : d_(d), stride_(stride) {
@@ -51,8 +50,7 @@ class SharedVertexValues {
       if (const double* found = find(v, hash)) return std::copy(found, found + stride_, out), false;
       // Each shard may fill up to 3/4 of its share of the table, so the table never fills up; the
       // table doubles when a shard fills half its share. (Counts per shard: one count for all
-      // shards moved between the cores at every store; with 2 threads on S^2 in R^3 the walk was
-      // 18-26 % slower than with private caches, 5-19 % with these.)
+      // shards would move between the cores at every store.)
       while (4 * (std::size_t{s.size} + 1) * kShards > 3 * table_.load(std::memory_order_acquire)->size()) {
         lock.unlock();  // (grow() takes every shard's lock)
         grow();
@@ -91,16 +89,13 @@ class SharedVertexValues {
   static constexpr std::uint32_t kShards = 32, kFirstBlock = 256;
   static constexpr std::uint32_t kIdBits = 27, kMaxPerShard = (1u << kIdBits) - 2;
 
-  // Slots: (top 32 bits of the hash) << 32 | shard << 27 | (id in the shard + 1), 0 = empty; home
-  // slot = leading hash bits.
+  // Slots (util/linear_probe.h): (top 32 bits of the hash) << 32 | shard << 27 | (id in the shard
+  // + 1), 0 = empty.
   struct Table {
-    explicit Table(std::size_t capacity)
-        : slots(capacity), mask(capacity - 1), shift(32 - std::countr_zero(capacity)) {}
+    explicit Table(std::size_t capacity) : slots(capacity), probe(capacity) {}
     std::size_t size() const { return slots.size(); }
-    std::size_t home(std::uint32_t tag) const { return static_cast<std::size_t>(tag) >> shift; }
     HugeVector<std::atomic<std::uint64_t>> slots;
-    std::size_t mask;
-    int shift;
+    LinearProbe probe;
   };
   struct alignas(64) Shard {
     std::mutex mutex;  // taken to store a vertex
@@ -118,30 +113,31 @@ class SharedVertexValues {
 
   const double* find(const std::int32_t* v, std::uint64_t hash) const {
     const Table* t = table_.load(std::memory_order_acquire);
-    const std::uint32_t tag = static_cast<std::uint32_t>(hash >> 32);
-    for (std::size_t i = t->home(tag);; i = (i + 1) & t->mask) {
-      const std::uint64_t slot = t->slots[i].load(std::memory_order_acquire);
-      if (slot == 0) return nullptr;
-      if (static_cast<std::uint32_t>(slot >> 32) != tag) continue;
-      const Shard& s = shards_[static_cast<std::uint32_t>(slot) >> kIdBits];
-      std::uint32_t offset;
-      const int b = block_of((static_cast<std::uint32_t>(slot) & ((1u << kIdBits) - 1)) - 1, offset);
-      const std::int32_t* key = s.keys[b].get() + std::size_t{offset} * d_;
-      std::int32_t diff = 0;
-      for (int j = 0; j < d_; ++j) diff |= key[j] ^ v[j];
-      if (diff == 0) return s.values[b].get() + std::size_t{offset} * stride_;
-    }
+    const double* values = nullptr;
+    t->probe.find(
+        LinearProbe::tag_of(hash), [t](std::size_t i) { return t->slots[i].load(std::memory_order_acquire); },
+        [&](std::uint32_t payload) {
+          const Shard& s = shards_[payload >> kIdBits];
+          std::uint32_t offset;
+          const int b = block_of((payload & ((1u << kIdBits) - 1)) - 1, offset);
+          const std::int32_t* key = s.keys[b].get() + std::size_t{offset} * d_;
+          std::int32_t diff = 0;
+          for (int j = 0; j < d_; ++j) diff |= key[j] ^ v[j];
+          if (diff == 0) values = s.values[b].get() + std::size_t{offset} * stride_;
+          return diff == 0;
+        });
+    return values;
   }
 
   // Called with the shard's lock held, after the entry's key and values are written.
   void publish(Shard& s, std::uint32_t shard, std::uint64_t hash, std::uint32_t id) {
     ++s.size;
-    const std::uint64_t slot = (hash >> 32 << 32) | (std::uint64_t{shard} << kIdBits) | (id + 1);
+    const std::uint64_t slot = LinearProbe::entry(hash, (shard << kIdBits) | (id + 1));
     Table& t = *tables_.back();  // (the current table: it only changes with every shard locked)
-    for (std::size_t i = t.home(static_cast<std::uint32_t>(hash >> 32));; i = (i + 1) & t.mask) {
+    t.probe.walk(LinearProbe::tag_of(hash), [&](std::size_t i) {  // (other shards claim slots at the same time)
       std::uint64_t empty = 0;
-      if (t.slots[i].compare_exchange_strong(empty, slot, std::memory_order_release, std::memory_order_relaxed)) return;
-    }
+      return t.slots[i].compare_exchange_strong(empty, slot, std::memory_order_release, std::memory_order_relaxed);
+    });
   }
 
   // Doubles the table unless another thread did; no shard lock may be held by the caller.
@@ -160,8 +156,8 @@ class SharedVertexValues {
     for (const auto& slot : old.slots) {
       const std::uint64_t x = slot.load(std::memory_order_relaxed);
       if (x == 0) continue;
-      std::size_t i = bigger.home(static_cast<std::uint32_t>(x >> 32));
-      while (bigger.slots[i].load(std::memory_order_relaxed) != 0) i = (i + 1) & bigger.mask;
+      const std::size_t i = bigger.probe.find_empty(
+          LinearProbe::tag_of(x), [&](std::size_t j) { return bigger.slots[j].load(std::memory_order_relaxed); });
       bigger.slots[i].store(x, std::memory_order_relaxed);
     }
     table_.store(&bigger, std::memory_order_release);  // old tables stay for readers still in them

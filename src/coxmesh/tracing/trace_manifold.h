@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "coxmesh/arrays.h"
 #include "coxmesh/errors.h"
 #include "coxmesh/lattice/packed_index.h"
 #include "coxmesh/oracle/intersection_oracle.h"
@@ -37,10 +38,10 @@ enum class TraceStatus { complete, max_simplices_reached };
 /// dense and in breadth-first discovery order (deterministic).
 struct TraceResult {
   int ambient_dimension = 0, codimension = 0;
-  PackedKeyIndex simplices{1};                      ///< S: packed k-simplices
-  UninitializedHugeVector<double> points;           ///< |S| × d intersection points
-  PackedKeyIndex boundary_simplices{1};             ///< S_∂: packed (k+1)-simplices
-  UninitializedHugeVector<double> boundary_points;  ///< |S_∂| × d
+  PackedKeyIndex simplices{1};           ///< S: packed k-simplices
+  PointArray points;                     ///< |S| × d intersection points
+  PackedKeyIndex boundary_simplices{1};  ///< S_∂: packed (k+1)-simplices
+  PointArray boundary_points;            ///< |S_∂| × d
   TraceStatus status = TraceStatus::complete;
   std::string message;  ///< why tracing stopped early (empty when complete)
   std::uint64_t oracle_calls = 0, function_evaluations = 0;

@@ -8,6 +8,7 @@
 
 #include "coxmesh/lattice/cofaces.h"
 #include "coxmesh/util/huge_page_allocator.h"
+#include "coxmesh/util/linear_probe.h"
 
 namespace coxmesh::walk {
 
@@ -28,7 +29,7 @@ std::uint64_t ParallelWalk::oracle_calls() const {
 // The parallel walk appends its levels to S without indexing them (its workers look simplices up
 // in the indexes of two levels), and S is indexed at the end, and whenever it has grown fourfold
 // since it last was (so a walk gone astray wastes at most that much; every fourfold, not twofold:
-// each indexing grows the table into fresh memory, 30 % of its time on S^2 in R^3). A simplex met
+// each indexing grows the table into fresh memory, whose page faults are much of its time). A simplex met
 // twice shows up there; only an oracle for which the walk's graph is not symmetric (a cofacet with
 // more than two transverse facets) can cause that, and the walk is then redone sequentially, so
 // the result is the same for every thread count in every case.
@@ -211,26 +212,24 @@ void ParallelWalk::merge(std::size_t n_chunks) {
   const int words = packed_words(d_);
   std::size_t rows = 0;
   for (std::size_t c = 0; c < n_chunks; ++c) rows += outputs[c].inside_hashes.size();
-  int bits = 4;
-  while ((std::size_t{1} << bits) < 2 * rows) ++bits;  // load ≤ 1/2
-  const std::size_t mask = (std::size_t{1} << bits) - 1;
-  firsts_.assign(mask + 1, 0);
+  std::size_t capacity = 16;
+  while (capacity < 2 * rows) capacity *= 2;  // load ≤ 1/2
+  const LinearProbe probe(capacity);
+  firsts_.assign(capacity, 0);
   sources_.clear();
   for (std::size_t c = 0; c < n_chunks; ++c) {
     const ChunkOutput& out = outputs[c];
     for (std::size_t r = 0; r < out.inside_hashes.size(); ++r) {
-      const std::uint32_t tag = static_cast<std::uint32_t>(out.inside_hashes[r] >> 32);
+      const std::uint32_t tag = LinearProbe::tag_of(out.inside_hashes[r]);
       const std::uint32_t* key = out.inside_keys.data() + r * words;
-      for (std::size_t s = tag >> (32 - bits);; s = (s + 1) & mask) {
-        const std::uint64_t slot = firsts_[s];
-        if (slot == 0) {
-          firsts_[s] = std::uint64_t{tag} << 32 | (sources_.size() + 1);
-          sources_.push_back(c << 32 | r);
-          break;
-        }
-        if (slot >> 32 == tag &&
-            std::equal(key, key + words, source_key(outputs, sources_[static_cast<std::uint32_t>(slot) - 1])))
-          break;  // output by an earlier chunk
+      const std::size_t s = probe.find(
+          tag, [&](std::size_t i) { return firsts_[i]; },
+          [&](std::uint32_t payload) {  // output by an earlier chunk
+            return std::equal(key, key + words, source_key(outputs, sources_[payload - 1]));
+          });
+      if (firsts_[s] == 0) {
+        firsts_[s] = LinearProbe::entry(out.inside_hashes[r], static_cast<std::uint32_t>(sources_.size() + 1));
+        sources_.push_back(c << 32 | r);
       }
     }
   }

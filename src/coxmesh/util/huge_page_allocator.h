@@ -1,8 +1,7 @@
 // An allocator for the big flat arrays of coxmesh (hash tables, key arrays, points, incidences):
 // blocks of 2 MiB and more are 2 MiB-aligned, rounded up to whole 2 MiB pages and marked for
 // transparent huge pages, so that filling them takes one page fault per 2 MiB instead of one per
-// 4 KiB. Page faults are much of the cost of growing tables (measured: 11 µs per 4 KiB fault on a
-// virtual machine with shadow page tables, 45 times the cost per byte of a huge-page fault).
+// 4 KiB. Page faults are much of the cost of growing tables (see docs/benchmarks.md for their cost).
 // Big blocks are mapped directly, so they arrive zero-filled by the kernel (zeroed_huge_vector
 // does not zero them again) and go back to the system when freed. Smaller blocks come from
 // operator new as usual.

@@ -24,7 +24,7 @@ inline int resolve_threads(int requested) {
 /// of cells): the threads are started once, not per loop. The calling thread is worker 0.
 /// Between loops a worker spins for a short while before it sleeps, and so does the caller while
 /// it waits for the workers: loops come every few hundred microseconds (between them the caller
-/// merges), and waking a sleeping thread took about 100 µs per loop on a virtual machine.
+/// merges), and waking a sleeping thread costs a good part of that (docs/benchmarks.md).
 /// With more workers than hardware threads nobody spins: a spinning thread would hold a core that
 /// a working one needs.
 class WorkerPool {
