@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # What a user of `coxmesh trace` waits for: each case in a fresh process, one thread by default,
-# with its phases (trace, cell complex, topology; "rest" is the whole command minus those three:
-# start-up, seeds and writing the file) and its peak memory. Fastest of R runs. Builds nothing.
+# with its phases (trace, cell complex, topology, writing the file; "rest" is the whole command
+# minus those: start-up, seeds, reporting) and its peak memory. Fastest of R runs. Builds nothing.
 #
 #   bench/run_end_to_end.sh [path/to/coxmesh] [runs=3] [threads=1]
 set -euo pipefail
@@ -22,8 +22,8 @@ cases=(
 )
 echo "date $(date -u +%Y-%m-%dT%H:%MZ), $(nproc) CPUs, load average $(cut -d' ' -f1-3 /proc/loadavg), threads $threads, best of $runs"
 echo
-echo "| case | simplices | cells | trace s | complex s | topology s | rest s | whole s | topology / (trace + complex) | peak MiB |"
-echo "|---|---|---|---|---|---|---|---|---|---|"
+echo "| case | simplices | cells | trace s | complex s | topology s | write s | rest s | whole s | topology / (trace + complex) | write / (trace + complex) | peak MiB |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
 for c in "${cases[@]}"; do
   name="${c%%|*}" args="${c#*|}"
   best=""
@@ -37,9 +37,10 @@ import json, sys
 s = json.load(open(sys.argv[1]))
 t = s["timings"]
 whole = float(sys.argv[3]) - float(sys.argv[2])
-tr, cx, tp = t["trace_seconds"], t["cell_complex_seconds"], t["topology_seconds"]
+tr, cx, tp, wr = t["trace_seconds"], t["cell_complex_seconds"], t["topology_seconds"], t.get("write_seconds", 0.0)
 print(f"{whole:.3f}|{s['traced_simplices']}|{sum(s['cells']) + sum(s['boundary_cells'])}|{tr:.3f}|{cx:.3f}|{tp:.3f}|"
-      f"{whole - tr - cx - tp:.3f}|{whole:.3f}|{tp / (tr + cx):.2f}|{s['peak_memory_bytes'] / 2**20:.0f}")
+      f"{wr:.3f}|{whole - tr - cx - tp - wr:.3f}|{whole:.3f}|{tp / (tr + cx):.2f}|{wr / (tr + cx):.2f}|"
+      f"{s['peak_memory_bytes'] / 2**20:.0f}")
 PY
 )
     if [[ -z "$best" ]] || awk "BEGIN { exit !(${line%%|*} < ${best%%|*}) }"; then best="$line"; fi

@@ -22,7 +22,11 @@ struct Components {
     while (parent[v] != v) v = parent[v] = parent[parent[v]];
     return v;
   }
-  void join(std::uint32_t a, std::uint32_t b) { parent[find(a)] = find(b); }
+  bool join(std::uint32_t a, std::uint32_t b) {  // true when they were apart
+    a = find(a), b = find(b);
+    parent[a] = b;
+    return a != b;
+  }
 };
 
 constexpr std::uint32_t kRemoved = 0xFFFFFFFFu;
@@ -31,27 +35,37 @@ constexpr std::uint32_t kRemoved = 0xFFFFFFFFu;
 // (relative to the first id of their dimension), which is the id of the one left when a count is 1.
 class Reducer {
  public:
-  // Over the cells of dimension ≤ top; `top_is_cut`: the complex has cells above top, and the
-  // homology of dimension top is not wanted (only the lower ones).
-  Reducer(const GlobalCells& c, int top, bool top_is_cut)
+  // Over the cells of dimension ≤ top, all vertices and the edges of a spanning forest of the
+  // vertex graph (tree_edge, per edge) removed first: that is the coreduction of each tree from a
+  // vertex whose class is known (β_0 counts it) outwards, one edge and the vertex at its far end
+  // at a time, done in one pass. `top_is_cut`: the complex has cells above top, and the homology
+  // of dimension top is not wanted (only the lower ones).
+  Reducer(const GlobalCells& c, int top, bool top_is_cut, const std::vector<std::uint8_t>& tree_edge)
       : cells_(c), top_(top), top_is_cut_(top_is_cut), cell_(c.start(top + 1, false), Counts{}) {
-    const std::size_t n = cell_.size();
+    const std::size_t n = cell_.size(), edges = c.start(1, false);
+    for (std::size_t g = 0; g < n; ++g)
+      if (g < edges || (g < c.start(2, false) && tree_edge[g - edges])) cell_[g].up = kRemoved;
     for (int j = 1; j <= top; ++j)
       for (std::size_t g = c.start(j, false); g < c.start(j + 1, false); ++g)
-        c.for_each_facet(g, [&](std::size_t f) {
-          ++cell_[g].down, ++cell_[f].up;
-          cell_[g].xdown ^= relative(f, j - 1), cell_[f].xup ^= relative(g, j);
-        });
-    // The cofaces of each cell, as CSR (the facets are the complex's own lists).
+        if (!removed(g))
+          c.for_each_facet(g, [&](std::size_t f) {
+            if (removed(f)) return;
+            ++cell_[g].down, ++cell_[f].up;
+            cell_[g].xdown ^= relative(f, j - 1), cell_[f].xup ^= relative(g, j);
+          });
+    // The cofaces of each remaining cell, as CSR (the facets are the complex's own lists).
     coface_start_.assign(n + 1, 0);
-    for (std::size_t g = 0; g < n; ++g) coface_start_[g + 1] = coface_start_[g] + cell_[g].up;
+    for (std::size_t g = 0; g < n; ++g) coface_start_[g + 1] = coface_start_[g] + (removed(g) ? 0 : cell_[g].up);
     coface_ids_.resize(coface_start_[n]);
     std::vector<std::uint64_t> next(coface_start_.begin(), coface_start_.end() - 1);
-    for (int j = 1; j <= top; ++j)
+    for (int j = 2; j <= top; ++j)
       for (std::size_t g = c.start(j, false); g < c.start(j + 1, false); ++g)
-        c.for_each_facet(g, [&](std::size_t f) { coface_ids_[next[f]++] = relative(g, j); });
-    for (std::size_t g = 0; g < n; ++g)
-      if (cell_[g].up == 1 || cell_[g].down == 1) pending_.push_back(g);
+        if (!removed(g))
+          c.for_each_facet(g, [&](std::size_t f) {
+            if (!removed(f)) coface_ids_[next[f]++] = relative(g, j);
+          });
+    for (std::size_t g = edges; g < n; ++g)
+      if (!removed(g) && (cell_[g].up == 1 || cell_[g].down <= 1)) pending_.push_back(g);
   }
 
   bool removed(std::size_t g) const { return g >= cell_.size() || cell_[g].up == kRemoved; }
@@ -154,17 +168,16 @@ std::vector<std::size_t> betti_numbers(const CellComplex& cc, bool manifold) {
   // β_0: the components of the vertex graph.
   const std::size_t vertices = cells.start(1, false);
   Components components(vertices);
-  for (std::size_t g = cells.start(1, false); g < cells.start(2, false); ++g) {
+  const std::size_t first_edge = cells.start(1, false);
+  std::vector<std::uint8_t> tree_edge(cells.start(2, false) - first_edge, 0);  // a spanning forest's edges
+  for (std::size_t g = first_edge; g < cells.start(2, false); ++g) {
     std::uint32_t ends[2] = {0, 0}, n = 0;
     cells.for_each_facet(g, [&](std::size_t v) { ends[n++ & 1] = static_cast<std::uint32_t>(v); });
-    components.join(ends[0], ends[1]);  // (closed complex: edge cells have two ends)
+    // (closed complex: edge cells have two ends)
+    tree_edge[g - first_edge] = components.join(ends[0], ends[1]);
   }
-  // The first vertex of each component: the deletions below spread from it in about the order in
-  // which the walk found the cells, which keeps their memory accesses near each other.
-  std::vector<std::uint32_t> component_vertex;
-  std::vector<std::uint8_t> seen(vertices, 0);
-  for (std::uint32_t v = 0; v < vertices; ++v)
-    if (const std::uint32_t root = components.find(v); !seen[root]) seen[root] = 1, component_vertex.push_back(v);
+  std::size_t components_count = vertices;
+  for (std::uint8_t t : tree_edge) components_count -= t;
   long long euler = 0;
   for (int j = 0; j <= m; ++j)
     euler += (j % 2 ? -1LL : 1LL) * static_cast<long long>(cells.start(j + 1, false) - cells.start(j, false));
@@ -173,16 +186,15 @@ std::vector<std::size_t> betti_numbers(const CellComplex& cc, bool manifold) {
   const int top = manifold ? m - 1 : m;
   std::vector<std::size_t> betti(m + 1, 0);
   if (!manifold || m >= 3) {
-    // Deletions start from one vertex per component, a 0-cycle that no chain bounds: removing it
-    // lowers β_0 by one and changes nothing else.
-    Reducer reducer(cells, top, top < m);
-    for (std::uint32_t v : component_vertex) reducer.remove(v);
+    // Deletions start from one vertex per component, a 0-cycle that no chain bounds (removing it
+    // lowers β_0 by one and changes nothing else), and spread along the spanning forest.
+    Reducer reducer(cells, top, top < m, tree_edge);
     reducer.reduce();
     std::vector<std::uint8_t> keep(cells.count());
     for (std::size_t g = 0; g < keep.size(); ++g) keep[g] = !reducer.removed(g);
     betti = betti_numbers_by_reduction(cc, keep);
   }
-  betti[0] += component_vertex.size();
+  betti[0] += components_count;
   if (manifold) {
     betti[m] = closed_top_pieces(cc).size();
     long long rest = euler;  // (−1)^(m−1) β_{m−1} = χ − the other terms

@@ -32,15 +32,31 @@ struct Grid {
     is_boundary.push_back(boundary ? 1 : 0);
     faceoffsets.push_back(-1);
   }
+
+  // Room for the cells of the complex (an estimate when cells are split into simplices), so that
+  // the arrays grow once instead of being copied into fresh memory again and again.
+  void reserve(const CellComplex& cc, int p, bool simplices) {
+    std::size_t cells = 0, corners = 0;
+    for (CellKind kind : {CellKind::interior, CellKind::boundary})
+      for (int j = 0; j <= p; ++j)
+        if (const CellLevel* level = cell_level(cc, kind, j)) {
+          const std::size_t n = level->size(), incidences = level->facet_ids.size() + level->boundary_facet.size();
+          const std::size_t per_cell = j == 2 ? 2 : 3;  // (s sides: s − 2 triangles)
+          const std::size_t split = simplices && j >= 2 ? std::max(incidences, per_cell * n) - per_cell * n : n;
+          cells += split, corners += j == 0 ? n : (simplices && j >= 2 ? (j + 1) * split : incidences);
+        }
+    connectivity.reserve(corners), offsets.reserve(cells), types.reserve(cells), dimension.reserve(cells);
+    is_boundary.reserve(cells), faceoffsets.reserve(cells);
+  }
 };
 
 std::array<double, 3> vec(const double* p3, std::uint32_t v) { return {p3[3 * v], p3[3 * v + 1], p3[3 * v + 2]}; }
 
 // Adds a 3-cell as a VTK polyhedron with faces turned outwards (Newell normal against the
-// direction from the cell's centroid to the face's centroid).
+// direction from the cell's centroid to the face's centroid). points, cycle: scratch space.
 void add_polyhedron(Grid& g, bool boundary, std::span<const std::uint32_t> face_ids, const Ragged& polygons,
-                    const double* p3) {
-  std::vector<std::uint32_t> points;
+                    const double* p3, std::vector<std::uint32_t>& points, std::vector<std::uint32_t>& cycle) {
+  points.clear();
   for (std::uint32_t f : face_ids) points.insert(points.end(), polygons[f].begin(), polygons[f].end());
   std::sort(points.begin(), points.end());
   points.erase(std::unique(points.begin(), points.end()), points.end());
@@ -50,7 +66,6 @@ void add_polyhedron(Grid& g, bool boundary, std::span<const std::uint32_t> face_
   g.add(kPolyhedron, 3, boundary, points);
   g.has_polyhedra = true;
   g.faces.push_back(static_cast<std::int64_t>(face_ids.size()));
-  std::vector<std::uint32_t> cycle;
   for (std::uint32_t f : face_ids) {
     cycle.assign(polygons[f].begin(), polygons[f].end());
     std::array<double, 3> normal{0, 0, 0}, mid{0, 0, 0};
@@ -94,6 +109,8 @@ WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projectio
 
   Grid g;
   const int p = std::min(m, 3);
+  g.reserve(cc, p, simplices);
+  std::vector<std::uint32_t> scratch_points, scratch_cycle;
   auto add_level = [&](CellKind kind, int dim) {
     const bool boundary = kind == CellKind::boundary;
     if (dim == 0) {
@@ -144,7 +161,7 @@ WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projectio
                                         g.add(kTetrahedron, 3, kind == CellKind::boundary, t);
                                       });
           } else if (!faces[c].empty()) {
-            add_polyhedron(g, kind == CellKind::boundary, faces[c], polygons, p3.data());
+            add_polyhedron(g, kind == CellKind::boundary, faces[c], polygons, p3.data(), scratch_points, scratch_cycle);
           } else {
             ++counts.skipped;
           }
