@@ -13,6 +13,7 @@
 #include <limits>
 #include <utility>
 
+#include "coxmesh/oracle/double_word.h"
 #include "coxmesh/oracle/small_lu.h"
 
 namespace coxmesh {
@@ -113,12 +114,144 @@ int certified_row_signs(int n, const double* a, const SmallLu& lu, double* first
   return 1;
 }
 
+// The second filter, for what double precision leaves undecided: x = A⁻¹e₀ (the leading entries of
+// the rows of A⁻¹) in double-word arithmetic. On degenerate input the undecided entries are mostly
+// not zero but tiny, a few units of rounding of the largest (values of F that are rounding noise
+// where the exact value is 0); 106 bits certify their signs. 1: every x_r certainly > 0 (then
+// `first_column` = x), 0: some x_r certainly < 0, −1: undecided (a leading entry may be an exact
+// zero, and only exact arithmetic can tell). The rows of A should be scaled to comparable sizes
+// (the bound is not invariant under row scaling).
+int double_word_first_column(int n, const double* a, double* first_column) {
+  std::array<DoubleWord, kMaxN * kMaxN> lu;  // column-major
+  std::array<int, kMaxN> perm;
+  double smallest = 1;
+  for (int i = 0; i < n * n; ++i) {
+    lu[i] = {a[i], 0};
+    if (a[i] != 0) smallest = std::min(smallest, std::abs(a[i]));
+  }
+  for (int r = 0; r < n; ++r) perm[r] = r;
+  // Products of a few entries below 2⁻⁴⁰⁰ would reach the range where low words underflow and the
+  // error bounds stop holding: exact arithmetic for those.
+  if (smallest < 0x1p-400) return -1;
+  const auto at = [&](int r, int c) -> DoubleWord& { return lu[c * n + r]; };
+  for (int c = 0; c < n; ++c) {
+    int p = c;
+    for (int r = c + 1; r < n; ++r)
+      if (std::abs(at(r, c).hi) > std::abs(at(p, c).hi)) p = r;
+    if (at(p, c).hi == 0) return -1;
+    if (p != c) {
+      for (int j = 0; j < n; ++j) std::swap(at(p, j), at(c, j));
+      std::swap(perm[p], perm[c]);
+    }
+    for (int r = c + 1; r < n; ++r) {
+      const DoubleWord f = at(r, c) = at(r, c) / at(c, c);
+      for (int j = c + 1; j < n; ++j) at(r, j) = at(r, j) - f * at(c, j);
+    }
+  }
+  std::array<DoubleWord, kMaxN> x;
+  for (int r = 0; r < n; ++r) {
+    DoubleWord s{perm[r] == 0 ? 1.0 : 0.0, 0};
+    for (int j = 0; j < r; ++j) s = s - at(r, j) * x[j];
+    x[r] = s;
+  }
+  for (int r = n - 1; r >= 0; --r) {
+    DoubleWord s = x[r];
+    for (int j = r + 1; j < n; ++j) s = s - at(r, j) * x[j];
+    x[r] = s / at(r, r);
+  }
+  // The bound of SmallLu::error_factor with the double-word unit: ‖x − x̂‖ ≤ 8n·u·K·‖x̂‖, K from the
+  // high words (twice, for that and for K's own rounding), and an absolute term for underflow.
+  double k_factor;
+  {
+    std::array<double, kMaxN> y;
+    double norm_l = 0, norm_u = 0, inv_l = 0, inv_u = 0;
+    for (int r = 0; r < n; ++r) {
+      double s = 1, row = 1;
+      for (int j = 0; j < r; ++j) s += std::abs(at(r, j).hi) * y[j], row += std::abs(at(r, j).hi);
+      y[r] = s;
+      inv_l = std::max(inv_l, s);
+      norm_l = std::max(norm_l, row);
+    }
+    for (int r = n - 1; r >= 0; --r) {
+      double s = 1, row = std::abs(at(r, r).hi);
+      for (int j = r + 1; j < n; ++j) s += std::abs(at(r, j).hi) * y[j], row += std::abs(at(r, j).hi);
+      y[r] = s / std::abs(at(r, r).hi);
+      inv_u = std::max(inv_u, y[r]);
+      norm_u = std::max(norm_u, row);
+    }
+    k_factor = 2 * norm_l * norm_u * inv_l * inv_u;
+  }
+  double size = 0;
+  for (int r = 0; r < n; ++r) size = std::max(size, std::abs(x[r].hi));
+  const double err = 8.0 * n * kDoubleWordUnit * k_factor * size + n * k_factor * 0x1p-900;
+  bool positive = true;
+  for (int r = 0; r < n; ++r) {
+    if (x[r].hi < -err) return 0;
+    positive &= x[r].hi > err;
+  }
+  if (!positive) return -1;
+  for (int r = 0; r < n; ++r) first_column[r] = x[r].hi;
+  return 1;
+}
+
+// λ = A⁻¹e₀ alone, with the O(n²) error bound of SmallLu::error_factor: 1 every λ_r certainly > 0,
+// 0 some λ_r certainly < 0 (the lexicographic rule only looks further along a row whose leading
+// entry is 0), −1 undecided.
+int quick_first_column(int n, const SmallLu& lu, double* lambda) {
+  constexpr double u = std::numeric_limits<double>::epsilon() / 2;
+  const double factor = lu.error_factor();
+  if (!(n * u * factor < 1e-6)) return -1;
+  lu.solve_unit(0, lambda);
+  double size = 0;
+  for (int r = 0; r < n; ++r) size = std::max(size, std::abs(lambda[r]));
+  const double err = 8.0 * n * u * factor * size;
+  bool positive = true;
+  for (int r = 0; r < n; ++r) {
+    if (lambda[r] < -err) return 0;
+    positive &= lambda[r] > err;
+  }
+  return positive ? 1 : -1;
+}
+
+// Is every row of A⁻¹ lexicographically positive? The filters from the cheapest on; exact
+// arithmetic only for what none of them certifies. On true, `first_column` = A⁻¹e₀.
+bool lexicographically_positive_inverse(int n, const double* original, double* first_column) {
+  // Rows scaled by powers of two to a largest entry in [1/2, 1): exact, and a positive row scaling
+  // scales the columns of A⁻¹, so no sign changes; but the error bounds, which are not invariant
+  // under it, get much tighter when the equations differ in scale. Row 0's factor is undone.
+  // (A row is left as it is where scaling it down would round an entry into the subnormals.)
+  std::array<double, kMaxN * kMaxN> scaled;
+  double scale0 = 1;
+  for (int r = 0; r < n; ++r) {
+    double big = 0, small = std::numeric_limits<double>::infinity();
+    for (int c = 0; c < n; ++c)
+      if (const double v = std::abs(original[c * n + r]); v != 0) big = std::max(big, v), small = std::min(small, v);
+    int e = 0;
+    if (big > 0) std::frexp(big, &e);
+    if (e > 0 && small < std::ldexp(std::numeric_limits<double>::min(), e)) e = 0;
+    const double factor = std::ldexp(1.0, -e);  // a power of two: the products are exact
+    if (r == 0) scale0 = factor;
+    for (int c = 0; c < n; ++c) scaled[c * n + r] = original[c * n + r] * factor;
+  }
+  const double* a = scaled.data();
+  SmallLu lu;
+  int signs = -1;
+  if (lu.factor(n, a)) {
+    signs = quick_first_column(n, lu, first_column);
+    if (signs < 0) signs = certified_row_signs(n, a, lu, first_column);  // the whole inverse
+  }
+  if (signs < 0) signs = double_word_first_column(n, a, first_column);
+  if (signs < 0) return exact_solve(n, original, first_column);
+  for (int r = 0; r < n; ++r) first_column[r] *= scale0;
+  return signs == 1;
+}
+
 // A vertex exactly on M (F(v_j) = 0: column j of M is e_0), the degenerate case that lattice
 // vertices on M make common. With column j moved first, M = [[1, 1ᵀ], [0, G]] for the k × k matrix G
 // of F at the other vertices, so M⁻¹ = [[1, −1ᵀG⁻¹], [0, G⁻¹]]: λ = e_j, row j of M⁻¹ is positive, and
 // the other rows are (0, rows of G⁻¹). τ is transverse iff every row of G⁻¹ is lexicographically
-// positive: a k × k question, usually decided in floating point. −1: undecided.
-int vertex_on_manifold(int n, const double* m, int j, double* lambda) {
+// positive: a k × k question, decided by the same filters and, only if they cannot, exactly.
+bool vertex_on_manifold(int n, const double* m, int j, double* lambda) {
   const int k = n - 1;
   std::array<double, kMaxN * kMaxN> g;  // column-major, k × k
   for (int c = 0, gc = 0; c < n; ++c) {
@@ -126,13 +259,10 @@ int vertex_on_manifold(int n, const double* m, int j, double* lambda) {
     for (int r = 1; r < n; ++r) g[gc * k + (r - 1)] = m[c * n + r];
     ++gc;
   }
-  SmallLu lu;
-  if (!lu.factor(k, g.data())) return -1;
   std::array<double, kMaxN> unused;
-  const int signs = certified_row_signs(k, g.data(), lu, unused.data());
-  if (signs != 1) return signs;
+  if (!lexicographically_positive_inverse(k, g.data(), unused.data())) return false;
   for (int r = 0; r < n; ++r) lambda[r] = r == j ? 1.0 : 0.0;
-  return 1;
+  return true;
 }
 
 }  // namespace
@@ -166,31 +296,8 @@ bool lexicographic_solve(int n, const double* m, double* lambda) {
     if (on_manifold >= 0) return false;
     on_manifold = c;
   }
-  if (on_manifold >= 0) {
-    const int decided = vertex_on_manifold(n, m, on_manifold, lambda);
-    return decided >= 0 ? decided == 1 : exact_solve(n, m, lambda);
-  }
-  SmallLu lu;
-  if (!lu.factor(n, m)) return exact_solve(n, m, lambda);
-  // Usually λ = M⁻¹·e₀ alone decides: a certainly negative λ_j rejects, all certainly positive
-  // accept (the lexicographic rule only looks further along a row whose leading entry is 0).
-  constexpr double u = std::numeric_limits<double>::epsilon() / 2;
-  const double factor = lu.error_factor();
-  if (n * u * factor < 1e-6) {
-    lu.solve_unit(0, lambda);
-    double size = 0;
-    for (int r = 0; r < n; ++r) size = std::max(size, std::abs(lambda[r]));
-    const double err = 8.0 * n * u * factor * size;
-    bool positive = true;
-    for (int r = 0; r < n; ++r) {
-      if (lambda[r] < -err) return false;
-      positive &= lambda[r] > err;
-    }
-    if (positive) return true;
-  }
-  // Undecided: the whole inverse, and the lexicographic signs of its rows.
-  const int signs = certified_row_signs(n, m, lu, lambda);
-  return signs >= 0 ? signs == 1 : exact_solve(n, m, lambda);
+  if (on_manifold >= 0) return vertex_on_manifold(n, m, on_manifold, lambda);
+  return lexicographically_positive_inverse(n, m, lambda);
 }
 
 }  // namespace coxmesh
