@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <utility>
+#include <vector>
 
 #include "coxmesh/oracle/double_word.h"
 #include "coxmesh/oracle/small_lu.h"
@@ -22,61 +23,108 @@ namespace {
 
 constexpr int kMaxN = 32;
 
+// Fraction-free Gauss–Jordan (Bareiss) on the augmented matrix a = [M | I] (n rows of 2n,
+// row-major, integers): it ends with [D·I | D·M⁻¹], every division exact and no gcd ever taken.
+// True iff M is non-singular and every row of M⁻¹ is lexicographically positive; then `lambda` =
+// the first column of M⁻¹. Every intermediate entry is a minor of [M | I] (up to sign), so
+// Hadamard's bound of its rows bounds them all.
+template <class Z, class Ratio>
+bool bareiss_lexicographic(int n, Z* a, double* lambda, Ratio ratio) {
+  const int w = 2 * n;
+  const auto at = [&](int r, int c) -> Z& { return a[r * w + c]; };
+  Z prev = 1;
+  for (int k = 0; k < n; ++k) {
+    int p = k;
+    while (p < n && at(p, k) == 0) ++p;
+    if (p == n) return false;  // singular
+    if (p != k)
+      for (int j = 0; j < w; ++j) std::swap(at(p, j), at(k, j));
+    for (int i = 0; i < n; ++i) {
+      if (i == k) continue;
+      for (int j = 0; j < w; ++j)
+        if (j != k) at(i, j) = (at(k, k) * at(i, j) - at(i, k) * at(k, j)) / prev;
+      at(i, k) = 0;
+    }
+    prev = at(k, k);
+  }
+  // Now a[r][r] = D for every r and a[r][n + c] = D·(M⁻¹)_rc.
+  for (int r = 0; r < n; ++r) {
+    int c = n;
+    while (at(r, c) == 0) ++c;  // rows of an inverse are never zero
+    if ((at(r, c) < 0) != (at(r, r) < 0)) return false;
+  }
+  for (int r = 0; r < n; ++r) lambda[r] = ratio(at(r, n), at(r, r));
+  return true;
+}
+
 // Exact fallback. Each row of M is scaled by a power of two so that its entries are integers
-// (a positive row scaling multiplies the columns of M^{-1} by positive numbers, so signs and the
-// first column are unchanged; row 0 is all ones). Fraction-free Gauss–Jordan (Bareiss) on [M | I]
-// ends with [D·I | D·M^{-1}]: every division is exact and no gcd is ever taken.
+// (a positive row scaling multiplies the columns of M⁻¹ by positive numbers, so signs and the
+// first column are unchanged; row 0 is all ones). Small integers (values of F that are small
+// integers or halves, as on the Freudenthal–Kuhn lattice) take 128-bit machine integers, when
+// Hadamard's bound keeps every minor below 2⁶² and so every product below 2¹²⁴; the others
+// arbitrary precision.
 bool exact_solve(int n, const double* m, double* lambda) {
-  using Z = boost::multiprecision::cpp_int;
-  std::array<std::array<Z, 2 * kMaxN>, kMaxN> a;  // row-major augmented matrix
+  std::array<long long, kMaxN * kMaxN> mant;  // entry (r, c) = mant · 2^shift, row-major
+  std::array<int, kMaxN * kMaxN> shift;
+  double bits = 0;  // log2 of Hadamard's bound of [M | I], rounded up
   for (int r = 0; r < n; ++r) {
     // Entry = odd integer × 2^e; scale the row by 2^{-min e}.
-    std::array<long long, kMaxN> mant{};
-    std::array<int, kMaxN> expo{};
-    int low = std::numeric_limits<int>::max();
+    int low = std::numeric_limits<int>::max(), top = 1;
     for (int c = 0; c < n; ++c) {
       const double v = m[c * n + r];
+      mant[r * n + c] = 0;
+      shift[r * n + c] = 0;
       if (v == 0) continue;
       int e;
       long long q = static_cast<long long>(std::ldexp(std::frexp(v, &e), 53));
       e -= 53;
       while ((q & 1) == 0) q /= 2, ++e;
-      mant[c] = q;
-      expo[c] = e;
+      mant[r * n + c] = q;
+      shift[r * n + c] = e;
       low = std::min(low, e);
     }
-    for (int c = 0; c < n; ++c) {
-      a[r][c] = Z(mant[c] < 0 ? -mant[c] : mant[c]) << (mant[c] == 0 ? 0 : expo[c] - low);
-      if (mant[c] < 0) a[r][c] = -a[r][c];
+    for (int c = 0; c < n; ++c)
+      if (mant[r * n + c] != 0) {
+        shift[r * n + c] -= low;
+        int length = 0;
+        for (unsigned long long q = mant[r * n + c] < 0 ? -mant[r * n + c] : mant[r * n + c]; q; q >>= 1) ++length;
+        top = std::max(top, length + shift[r * n + c]);  // |entry| < 2^top
+      }
+    bits += top + 0.5 * std::log2(n + 1.0);  // the row's norm < √(n + 1)·2^top (with its 1 of I)
+  }
+  if (bits <= 62) {
+    __extension__ using Small = __int128;
+    std::array<Small, kMaxN * 2 * kMaxN> a;
+    for (int r = 0; r < n; ++r)
+      for (int c = 0; c < 2 * n; ++c)
+        a[r * 2 * n + c] =
+            c < n ? static_cast<Small>(mant[r * n + c]) * (Small{1} << shift[r * n + c]) : Small{c - n == r ? 1 : 0};
+    return bareiss_lexicographic(n, a.data(), lambda,
+                                 [](Small p, Small q) { return static_cast<double>(p) / static_cast<double>(q); });
+  }
+  using Z = boost::multiprecision::cpp_int;
+  thread_local std::vector<Z> a;  // kept: its entries keep their buffers from call to call
+  if (a.size() < static_cast<std::size_t>(2 * n * n)) a.resize(2 * n * n);
+  for (int r = 0; r < n; ++r)
+    for (int c = 0; c < 2 * n; ++c) {
+      Z& z = a[r * 2 * n + c];
+      if (c >= n) {
+        z = c - n == r ? 1 : 0;
+        continue;
+      }
+      const long long q = mant[r * n + c];
+      z = q < 0 ? -q : q;
+      z <<= shift[r * n + c];
+      if (q < 0) z = -z;
     }
-    for (int c = n; c < 2 * n; ++c) a[r][c] = (c - n == r) ? 1 : 0;
-  }
-  Z prev = 1;
-  for (int k = 0; k < n; ++k) {
-    int p = k;
-    while (p < n && a[p][k] == 0) ++p;
-    if (p == n) return false;  // singular
-    if (p != k) std::swap(a[p], a[k]);
-    for (int i = 0; i < n; ++i) {
-      if (i == k) continue;
-      for (int j = 0; j < 2 * n; ++j)
-        if (j != k) a[i][j] = (a[k][k] * a[i][j] - a[i][k] * a[k][j]) / prev;
-      a[i][k] = 0;
-    }
-    prev = a[k][k];
-  }
-  // Now a[r][r] = D for every r and a[r][n + c] = D·(M^{-1})_{rc}.
-  for (int r = 0; r < n; ++r) {
-    int c = n;
-    while (a[r][c] == 0) ++c;  // rows of an inverse are never zero
-    if ((a[r][c] < 0) != (a[r][r] < 0)) return false;
-  }
-  for (int r = 0; r < n; ++r) {
-    boost::multiprecision::cpp_rational q(a[r][n]);  // (not the two-argument constructor: Boost 1.74
-    q /= a[r][r];                                    // rejects a zero numerator over a negative)
-    lambda[r] = static_cast<double>(q);
-  }
-  return true;
+  return bareiss_lexicographic(n, a.data(), lambda, [](Z p, Z q) {
+    // λ_r = p/q ≥ 0 (p is 0 or of q's sign) needs no exact rounding: magnitudes shifted into the
+    // range of doubles, no gcd taken.
+    p = abs(p), q = abs(q);
+    const int top = static_cast<int>(msb(q));
+    if (top > 900) p >>= top - 900, q >>= top - 900;
+    return static_cast<double>(p) / static_cast<double>(q);
+  });
 }
 
 // The rows of A⁻¹ (A n × n, column-major, factored in `lu`), each judged lexicographically
@@ -216,6 +264,10 @@ int quick_first_column(int n, const SmallLu& lu, double* lambda) {
 // Is every row of A⁻¹ lexicographically positive? The filters from the cheapest on; exact
 // arithmetic only for what none of them certifies. On true, `first_column` = A⁻¹e₀.
 bool lexicographically_positive_inverse(int n, const double* original, double* first_column) {
+  SmallLu lu;
+  if (lu.factor(n, original)) {  // most calls: λ alone, on M as given
+    if (const int signs = quick_first_column(n, lu, first_column); signs >= 0) return signs == 1;
+  }
   // Rows scaled by powers of two to a largest entry in [1/2, 1): exact, and a positive row scaling
   // scales the columns of A⁻¹, so no sign changes; but the error bounds, which are not invariant
   // under it, get much tighter when the equations differ in scale. Row 0's factor is undone.
@@ -234,7 +286,6 @@ bool lexicographically_positive_inverse(int n, const double* original, double* f
     for (int c = 0; c < n; ++c) scaled[c * n + r] = original[c * n + r] * factor;
   }
   const double* a = scaled.data();
-  SmallLu lu;
   int signs = -1;
   if (lu.factor(n, a)) {
     signs = quick_first_column(n, lu, first_column);
