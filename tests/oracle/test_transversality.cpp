@@ -11,6 +11,7 @@
 #include <boost/multiprecision/cpp_int.hpp>
 #include <random>
 
+#include "coxmesh/oracle/double_word.h"
 #include "coxmesh/oracle/transversality.h"
 
 using coxmesh::lexicographic_solve;
@@ -122,4 +123,66 @@ TEST(Transversality, SpecExample) {
   EXPECT_EQ(lambda[1], 0.0);
   EXPECT_FALSE(lexicographic_solve(2, both_on, lambda));
   EXPECT_FALSE(lexicographic_solve(2, neg_zero, lambda));
+}
+
+TEST(Transversality, AgreesWithExactReferenceOnRoundingNoise) {
+  // Lattice vertices near M give values of F that are rounding noise (a few units of 2⁻⁵⁵) where
+  // the exact value is 0, so the leading entries of M⁻¹ are tiny but not zero: what the
+  // double-word filter decides. Some vertices exactly on M, some noise of noise.
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  int transverse = 0, total = 0;
+  for (int n = 3; n <= 7; ++n) {
+    for (int trial = 0; trial < 150; ++trial) {
+      std::vector<double> m(n * n);
+      for (int c = 0; c < n; ++c) {
+        m[c * n] = 1;
+        for (int r = 1; r < n; ++r) {
+          const int kind = static_cast<int>(rng() % 4);
+          const double noise = std::ldexp(static_cast<double>(static_cast<int>(rng() % 7) - 3), -55);
+          m[c * n + r] = kind == 0 ? noise : kind == 1 ? noise * std::ldexp(unit(rng), -50) : unit(rng);
+        }
+      }
+      if (trial % 4 == 0) {
+        const int c = static_cast<int>(rng() % n);
+        for (int r = 1; r < n; ++r) m[c * n + r] = 0;
+      }
+      std::vector<double> expected, got(n);
+      const bool ref = reference(n, m, expected);
+      ASSERT_EQ(lexicographic_solve(n, m.data(), got.data()), ref) << "n=" << n << " trial=" << trial;
+      if (ref) {
+        for (int j = 0; j < n; ++j) EXPECT_NEAR(got[j], expected[j], 1e-9);
+      }
+      transverse += ref;
+      ++total;
+    }
+  }
+  EXPECT_GT(transverse, total / 50);
+}
+
+TEST(DoubleWord, EveryOperationWithinItsUnit) {
+  using coxmesh::DoubleWord;
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> unit(0.5, 1);
+  const auto random_word = [&] {
+    // hi + lo with |lo| ≤ ulp(hi)/2, at exponents −40..40, either sign.
+    const double hi = std::ldexp(unit(rng), static_cast<int>(rng() % 81) - 40) * ((rng() & 1) ? 1 : -1);
+    const double lo = hi * std::ldexp(unit(rng), -54) * ((rng() & 1) ? 1 : -1);
+    const double s = hi + lo;
+    return DoubleWord{s, lo - (s - hi)};
+  };
+  const auto exact = [](DoubleWord x) { return Q(x.hi) + Q(x.lo); };
+  const auto within = [](const Q& got, const Q& want) {
+    return abs(got - want) <= Q(coxmesh::kDoubleWordUnit) * abs(want);
+  };
+  for (int trial = 0; trial < 20000; ++trial) {
+    const DoubleWord x = random_word(), y = random_word();
+    ASSERT_TRUE(within(exact(x + y), exact(x) + exact(y))) << trial;
+    ASSERT_TRUE(within(exact(x - y), exact(x) - exact(y))) << trial;
+    ASSERT_TRUE(within(exact(x * y), exact(x) * exact(y))) << trial;
+    ASSERT_TRUE(within(exact(x / y), exact(x) / exact(y))) << trial;
+  }
+  // Cancellation: x + (−x·(1 + 2⁻⁹⁰)) keeps the tiny difference.
+  const DoubleWord x{1.0, 0x1p-60}, y{-1.0, -0x1p-60 - 0x1p-90};
+  EXPECT_EQ(exact(x + y), Q(-0x1p-90));
 }

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "coxmesh/lattice/cofaces.h"
@@ -197,6 +198,14 @@ bool ImplicitOracle::pivot_enter(const Simplex& tau) {
   }
   if (!pivot_lu_.factor(n, m)) return false;
   pivot_lu_.solve_unit(0, pivot_lambda_.data());
+  pivot_rows_ready_ = 0;
+  for (int j = 0; j < n; ++j) {  // a vertex on M: λ_τ is exactly e_j (rounding would blur the ties)
+    bool zero = true;
+    for (int i = 1; i < n && zero; ++i) zero = m[j * n + i] == 0;
+    if (!zero) continue;
+    for (int r = 0; r < n; ++r) pivot_lambda_[r] = r == j ? 1.0 : 0.0;
+    break;
+  }
   return true;
 }
 
@@ -217,6 +226,31 @@ int ImplicitOracle::pivot_exit(const std::int32_t* v) {
       const double t = std::max(pivot_lambda_[j], 0.0) / w[j];
       if (exit < 0 || t < best) exit = j, best = t;
     }
+  if (exit < 0) return exit;
+  // Ties (a vertex of τ on M makes λ_τ = e_j, and every ratio but one 0): the transversality rule
+  // follows M̂ perturbed to F̂ = (ε, ε², …), where λ_τ(ε) = Σ_c ε^c·(column c of M(τ)⁻¹), so the
+  // ratio test compares the rows of M(τ)⁻¹ divided by w_j lexicographically (the lexicographic
+  // pivoting rule of PL continuation). Ties are exact equalities (a tiny λ_j that is not 0 decides
+  // by itself, and blurring ties with a tolerance made more guesses wrong). Only a guess:
+  // intersect() checks it.
+  std::uint32_t tied = 0;
+  for (int j = 0; j < n; ++j)
+    if (w[j] > 0 && std::max(pivot_lambda_[j], 0.0) / w[j] == best) tied |= 1u << j;
+  for (int c = 1; c < n && (tied & (tied - 1)) != 0; ++c) {
+    double low = std::numeric_limits<double>::infinity();
+    for (int j = 0; j < n; ++j)
+      if (tied >> j & 1) {
+        if (!(pivot_rows_ready_ >> j & 1)) {
+          pivot_lu_.solve_transposed_unit(j, pivot_rows_.data() + j * n);
+          pivot_rows_ready_ |= 1u << j;
+        }
+        low = std::min(low, pivot_rows_[j * n + c] / w[j]);
+      }
+    for (int j = 0; j < n; ++j)
+      if ((tied >> j & 1) && pivot_rows_[j * n + c] / w[j] > low) tied &= ~(1u << j);
+  }
+  for (int j = 0; j < n; ++j)
+    if (tied >> j & 1) return j;
   return exit;
 }
 

@@ -73,10 +73,12 @@ class ImplicitOracle final : public IntersectionOracle {
   PackedKeyIndex cache_;       // without shared_: every vertex this oracle met
   HugeVector<double> values_;  // stride_ per cached vertex: F values, then D
   std::vector<double> scratch_;
-  bool batches_ = false;                             // prefetch evaluates levels in batches
-  std::vector<double> batch_points_, batch_values_;  // prefetch's vertices (Cartesian) and F, D there
-  SmallLu pivot_lu_;                                 // M(τ) of the last pivot_enter
-  std::array<double, SmallLu::kMaxN> pivot_lambda_;  // its barycentric solution (k = 1: F at τ's ends)
+  bool batches_ = false;                                            // prefetch evaluates levels in batches
+  std::vector<double> batch_points_, batch_values_;                 // prefetch's vertices (Cartesian) and F, D there
+  SmallLu pivot_lu_;                                                // M(τ) of the last pivot_enter
+  std::array<double, SmallLu::kMaxN> pivot_lambda_;                 // its barycentric solution (k = 1: F at τ's ends)
+  std::array<double, SmallLu::kMaxN * SmallLu::kMaxN> pivot_rows_;  // rows of M(τ)⁻¹, for ties
+  std::uint32_t pivot_rows_ready_ = 0;                              // which rows are computed
   std::uint64_t evaluations_ = 0;
   bool cache_enabled_ = true;
 };

@@ -58,6 +58,22 @@ class SmallLu {
     back_substitute(x);
   }
 
+  /// x = row r of M⁻¹ (Mᵀx = e_r: with P·M = L·U, Uᵀ then Lᵀ, then the permutation).
+  void solve_transposed_unit(int r, double* x) const {
+    std::array<double, kMaxN> y;
+    for (int i = 0; i < n_; ++i) {
+      double s = i == r ? 1.0 : 0.0;
+      for (int j = 0; j < i; ++j) s -= at(j, i) * y[j];
+      y[i] = s / at(i, i);
+    }
+    for (int i = n_ - 1; i >= 0; --i) {
+      double s = y[i];
+      for (int j = i + 1; j < n_; ++j) s -= at(j, i) * y[j];
+      y[i] = s;
+    }
+    for (int i = 0; i < n_; ++i) x[perm_[i]] = y[i];
+  }
+
   /// A computed solution x̂ of M·x = b satisfies ‖x − x̂‖_∞ ≤ 8n·u·K·‖x̂‖_∞ (u = unit roundoff), with
   /// K = this factor = ‖|L|‖·‖|U|‖·‖⟨L⟩⁻¹‖·‖⟨U⟩⁻¹‖ (∞-norms): the backward error γ_3n·|L||U| of
   /// the solve (Higham, Thm 9.4) times a bound of ‖M⁻¹‖, where |T⁻¹| ≤ ⟨T⟩⁻¹ entrywise for the

@@ -12,7 +12,9 @@
 #include <cmath>
 #include <limits>
 #include <utility>
+#include <vector>
 
+#include "coxmesh/oracle/double_word.h"
 #include "coxmesh/oracle/small_lu.h"
 
 namespace coxmesh {
@@ -21,61 +23,108 @@ namespace {
 
 constexpr int kMaxN = 32;
 
+// Fraction-free Gauss–Jordan (Bareiss) on the augmented matrix a = [M | I] (n rows of 2n,
+// row-major, integers): it ends with [D·I | D·M⁻¹], every division exact and no gcd ever taken.
+// True iff M is non-singular and every row of M⁻¹ is lexicographically positive; then `lambda` =
+// the first column of M⁻¹. Every intermediate entry is a minor of [M | I] (up to sign), so
+// Hadamard's bound of its rows bounds them all.
+template <class Z, class Ratio>
+bool bareiss_lexicographic(int n, Z* a, double* lambda, Ratio ratio) {
+  const int w = 2 * n;
+  const auto at = [&](int r, int c) -> Z& { return a[r * w + c]; };
+  Z prev = 1;
+  for (int k = 0; k < n; ++k) {
+    int p = k;
+    while (p < n && at(p, k) == 0) ++p;
+    if (p == n) return false;  // singular
+    if (p != k)
+      for (int j = 0; j < w; ++j) std::swap(at(p, j), at(k, j));
+    for (int i = 0; i < n; ++i) {
+      if (i == k) continue;
+      for (int j = 0; j < w; ++j)
+        if (j != k) at(i, j) = (at(k, k) * at(i, j) - at(i, k) * at(k, j)) / prev;
+      at(i, k) = 0;
+    }
+    prev = at(k, k);
+  }
+  // Now a[r][r] = D for every r and a[r][n + c] = D·(M⁻¹)_rc.
+  for (int r = 0; r < n; ++r) {
+    int c = n;
+    while (at(r, c) == 0) ++c;  // rows of an inverse are never zero
+    if ((at(r, c) < 0) != (at(r, r) < 0)) return false;
+  }
+  for (int r = 0; r < n; ++r) lambda[r] = ratio(at(r, n), at(r, r));
+  return true;
+}
+
 // Exact fallback. Each row of M is scaled by a power of two so that its entries are integers
-// (a positive row scaling multiplies the columns of M^{-1} by positive numbers, so signs and the
-// first column are unchanged; row 0 is all ones). Fraction-free Gauss–Jordan (Bareiss) on [M | I]
-// ends with [D·I | D·M^{-1}]: every division is exact and no gcd is ever taken.
+// (a positive row scaling multiplies the columns of M⁻¹ by positive numbers, so signs and the
+// first column are unchanged; row 0 is all ones). Small integers (values of F that are small
+// integers or halves, as on the Freudenthal–Kuhn lattice) take 128-bit machine integers, when
+// Hadamard's bound keeps every minor below 2⁶² and so every product below 2¹²⁴; the others
+// arbitrary precision.
 bool exact_solve(int n, const double* m, double* lambda) {
-  using Z = boost::multiprecision::cpp_int;
-  std::array<std::array<Z, 2 * kMaxN>, kMaxN> a;  // row-major augmented matrix
+  std::array<long long, kMaxN * kMaxN> mant;  // entry (r, c) = mant · 2^shift, row-major
+  std::array<int, kMaxN * kMaxN> shift;
+  double bits = 0;  // log2 of Hadamard's bound of [M | I], rounded up
   for (int r = 0; r < n; ++r) {
     // Entry = odd integer × 2^e; scale the row by 2^{-min e}.
-    std::array<long long, kMaxN> mant{};
-    std::array<int, kMaxN> expo{};
-    int low = std::numeric_limits<int>::max();
+    int low = std::numeric_limits<int>::max(), top = 1;
     for (int c = 0; c < n; ++c) {
       const double v = m[c * n + r];
+      mant[r * n + c] = 0;
+      shift[r * n + c] = 0;
       if (v == 0) continue;
       int e;
       long long q = static_cast<long long>(std::ldexp(std::frexp(v, &e), 53));
       e -= 53;
       while ((q & 1) == 0) q /= 2, ++e;
-      mant[c] = q;
-      expo[c] = e;
+      mant[r * n + c] = q;
+      shift[r * n + c] = e;
       low = std::min(low, e);
     }
-    for (int c = 0; c < n; ++c) {
-      a[r][c] = Z(mant[c] < 0 ? -mant[c] : mant[c]) << (mant[c] == 0 ? 0 : expo[c] - low);
-      if (mant[c] < 0) a[r][c] = -a[r][c];
+    for (int c = 0; c < n; ++c)
+      if (mant[r * n + c] != 0) {
+        shift[r * n + c] -= low;
+        int length = 0;
+        for (unsigned long long q = mant[r * n + c] < 0 ? -mant[r * n + c] : mant[r * n + c]; q; q >>= 1) ++length;
+        top = std::max(top, length + shift[r * n + c]);  // |entry| < 2^top
+      }
+    bits += top + 0.5 * std::log2(n + 1.0);  // the row's norm < √(n + 1)·2^top (with its 1 of I)
+  }
+  if (bits <= 62) {
+    __extension__ using Small = __int128;
+    std::array<Small, kMaxN * 2 * kMaxN> a;
+    for (int r = 0; r < n; ++r)
+      for (int c = 0; c < 2 * n; ++c)
+        a[r * 2 * n + c] =
+            c < n ? static_cast<Small>(mant[r * n + c]) * (Small{1} << shift[r * n + c]) : Small{c - n == r ? 1 : 0};
+    return bareiss_lexicographic(n, a.data(), lambda,
+                                 [](Small p, Small q) { return static_cast<double>(p) / static_cast<double>(q); });
+  }
+  using Z = boost::multiprecision::cpp_int;
+  thread_local std::vector<Z> a;  // kept: its entries keep their buffers from call to call
+  if (a.size() < static_cast<std::size_t>(2 * n * n)) a.resize(2 * n * n);
+  for (int r = 0; r < n; ++r)
+    for (int c = 0; c < 2 * n; ++c) {
+      Z& z = a[r * 2 * n + c];
+      if (c >= n) {
+        z = c - n == r ? 1 : 0;
+        continue;
+      }
+      const long long q = mant[r * n + c];
+      z = q < 0 ? -q : q;
+      z <<= shift[r * n + c];
+      if (q < 0) z = -z;
     }
-    for (int c = n; c < 2 * n; ++c) a[r][c] = (c - n == r) ? 1 : 0;
-  }
-  Z prev = 1;
-  for (int k = 0; k < n; ++k) {
-    int p = k;
-    while (p < n && a[p][k] == 0) ++p;
-    if (p == n) return false;  // singular
-    if (p != k) std::swap(a[p], a[k]);
-    for (int i = 0; i < n; ++i) {
-      if (i == k) continue;
-      for (int j = 0; j < 2 * n; ++j)
-        if (j != k) a[i][j] = (a[k][k] * a[i][j] - a[i][k] * a[k][j]) / prev;
-      a[i][k] = 0;
-    }
-    prev = a[k][k];
-  }
-  // Now a[r][r] = D for every r and a[r][n + c] = D·(M^{-1})_{rc}.
-  for (int r = 0; r < n; ++r) {
-    int c = n;
-    while (a[r][c] == 0) ++c;  // rows of an inverse are never zero
-    if ((a[r][c] < 0) != (a[r][r] < 0)) return false;
-  }
-  for (int r = 0; r < n; ++r) {
-    boost::multiprecision::cpp_rational q(a[r][n]);  // (not the two-argument constructor: Boost 1.74
-    q /= a[r][r];                                    // rejects a zero numerator over a negative)
-    lambda[r] = static_cast<double>(q);
-  }
-  return true;
+  return bareiss_lexicographic(n, a.data(), lambda, [](Z p, Z q) {
+    // λ_r = p/q ≥ 0 (p is 0 or of q's sign) needs no exact rounding: magnitudes shifted into the
+    // range of doubles, no gcd taken.
+    p = abs(p), q = abs(q);
+    const int top = static_cast<int>(msb(q));
+    if (top > 900) p >>= top - 900, q >>= top - 900;
+    return static_cast<double>(p) / static_cast<double>(q);
+  });
 }
 
 // The rows of A⁻¹ (A n × n, column-major, factored in `lu`), each judged lexicographically
@@ -113,12 +162,147 @@ int certified_row_signs(int n, const double* a, const SmallLu& lu, double* first
   return 1;
 }
 
+// The second filter, for what double precision leaves undecided: x = A⁻¹e₀ (the leading entries of
+// the rows of A⁻¹) in double-word arithmetic. On degenerate input the undecided entries are mostly
+// not zero but tiny, a few units of rounding of the largest (values of F that are rounding noise
+// where the exact value is 0); 106 bits certify their signs. 1: every x_r certainly > 0 (then
+// `first_column` = x), 0: some x_r certainly < 0, −1: undecided (a leading entry may be an exact
+// zero, and only exact arithmetic can tell). The rows of A should be scaled to comparable sizes
+// (the bound is not invariant under row scaling).
+int double_word_first_column(int n, const double* a, double* first_column) {
+  std::array<DoubleWord, kMaxN * kMaxN> lu;  // column-major
+  std::array<int, kMaxN> perm;
+  double smallest = 1;
+  for (int i = 0; i < n * n; ++i) {
+    lu[i] = {a[i], 0};
+    if (a[i] != 0) smallest = std::min(smallest, std::abs(a[i]));
+  }
+  for (int r = 0; r < n; ++r) perm[r] = r;
+  // Products of a few entries below 2⁻⁴⁰⁰ would reach the range where low words underflow and the
+  // error bounds stop holding: exact arithmetic for those.
+  if (smallest < 0x1p-400) return -1;
+  const auto at = [&](int r, int c) -> DoubleWord& { return lu[c * n + r]; };
+  for (int c = 0; c < n; ++c) {
+    int p = c;
+    for (int r = c + 1; r < n; ++r)
+      if (std::abs(at(r, c).hi) > std::abs(at(p, c).hi)) p = r;
+    if (at(p, c).hi == 0) return -1;
+    if (p != c) {
+      for (int j = 0; j < n; ++j) std::swap(at(p, j), at(c, j));
+      std::swap(perm[p], perm[c]);
+    }
+    for (int r = c + 1; r < n; ++r) {
+      const DoubleWord f = at(r, c) = at(r, c) / at(c, c);
+      for (int j = c + 1; j < n; ++j) at(r, j) = at(r, j) - f * at(c, j);
+    }
+  }
+  std::array<DoubleWord, kMaxN> x;
+  for (int r = 0; r < n; ++r) {
+    DoubleWord s{perm[r] == 0 ? 1.0 : 0.0, 0};
+    for (int j = 0; j < r; ++j) s = s - at(r, j) * x[j];
+    x[r] = s;
+  }
+  for (int r = n - 1; r >= 0; --r) {
+    DoubleWord s = x[r];
+    for (int j = r + 1; j < n; ++j) s = s - at(r, j) * x[j];
+    x[r] = s / at(r, r);
+  }
+  // The bound of SmallLu::error_factor with the double-word unit: ‖x − x̂‖ ≤ 8n·u·K·‖x̂‖, K from the
+  // high words (twice, for that and for K's own rounding), and an absolute term for underflow.
+  double k_factor;
+  {
+    std::array<double, kMaxN> y;
+    double norm_l = 0, norm_u = 0, inv_l = 0, inv_u = 0;
+    for (int r = 0; r < n; ++r) {
+      double s = 1, row = 1;
+      for (int j = 0; j < r; ++j) s += std::abs(at(r, j).hi) * y[j], row += std::abs(at(r, j).hi);
+      y[r] = s;
+      inv_l = std::max(inv_l, s);
+      norm_l = std::max(norm_l, row);
+    }
+    for (int r = n - 1; r >= 0; --r) {
+      double s = 1, row = std::abs(at(r, r).hi);
+      for (int j = r + 1; j < n; ++j) s += std::abs(at(r, j).hi) * y[j], row += std::abs(at(r, j).hi);
+      y[r] = s / std::abs(at(r, r).hi);
+      inv_u = std::max(inv_u, y[r]);
+      norm_u = std::max(norm_u, row);
+    }
+    k_factor = 2 * norm_l * norm_u * inv_l * inv_u;
+  }
+  double size = 0;
+  for (int r = 0; r < n; ++r) size = std::max(size, std::abs(x[r].hi));
+  const double err = 8.0 * n * kDoubleWordUnit * k_factor * size + n * k_factor * 0x1p-900;
+  bool positive = true;
+  for (int r = 0; r < n; ++r) {
+    if (x[r].hi < -err) return 0;
+    positive &= x[r].hi > err;
+  }
+  if (!positive) return -1;
+  for (int r = 0; r < n; ++r) first_column[r] = x[r].hi;
+  return 1;
+}
+
+// λ = A⁻¹e₀ alone, with the O(n²) error bound of SmallLu::error_factor: 1 every λ_r certainly > 0,
+// 0 some λ_r certainly < 0 (the lexicographic rule only looks further along a row whose leading
+// entry is 0), −1 undecided.
+int quick_first_column(int n, const SmallLu& lu, double* lambda) {
+  constexpr double u = std::numeric_limits<double>::epsilon() / 2;
+  const double factor = lu.error_factor();
+  if (!(n * u * factor < 1e-6)) return -1;
+  lu.solve_unit(0, lambda);
+  double size = 0;
+  for (int r = 0; r < n; ++r) size = std::max(size, std::abs(lambda[r]));
+  const double err = 8.0 * n * u * factor * size;
+  bool positive = true;
+  for (int r = 0; r < n; ++r) {
+    if (lambda[r] < -err) return 0;
+    positive &= lambda[r] > err;
+  }
+  return positive ? 1 : -1;
+}
+
+// Is every row of A⁻¹ lexicographically positive? The filters from the cheapest on; exact
+// arithmetic only for what none of them certifies. On true, `first_column` = A⁻¹e₀.
+bool lexicographically_positive_inverse(int n, const double* original, double* first_column) {
+  SmallLu lu;
+  if (lu.factor(n, original)) {  // most calls: λ alone, on M as given
+    if (const int signs = quick_first_column(n, lu, first_column); signs >= 0) return signs == 1;
+  }
+  // Rows scaled by powers of two to a largest entry in [1/2, 1): exact, and a positive row scaling
+  // scales the columns of A⁻¹, so no sign changes; but the error bounds, which are not invariant
+  // under it, get much tighter when the equations differ in scale. Row 0's factor is undone.
+  // (A row is left as it is where scaling it down would round an entry into the subnormals.)
+  std::array<double, kMaxN * kMaxN> scaled;
+  double scale0 = 1;
+  for (int r = 0; r < n; ++r) {
+    double big = 0, small = std::numeric_limits<double>::infinity();
+    for (int c = 0; c < n; ++c)
+      if (const double v = std::abs(original[c * n + r]); v != 0) big = std::max(big, v), small = std::min(small, v);
+    int e = 0;
+    if (big > 0) std::frexp(big, &e);
+    if (e > 0 && small < std::ldexp(std::numeric_limits<double>::min(), e)) e = 0;
+    const double factor = std::ldexp(1.0, -e);  // a power of two: the products are exact
+    if (r == 0) scale0 = factor;
+    for (int c = 0; c < n; ++c) scaled[c * n + r] = original[c * n + r] * factor;
+  }
+  const double* a = scaled.data();
+  int signs = -1;
+  if (lu.factor(n, a)) {
+    signs = quick_first_column(n, lu, first_column);
+    if (signs < 0) signs = certified_row_signs(n, a, lu, first_column);  // the whole inverse
+  }
+  if (signs < 0) signs = double_word_first_column(n, a, first_column);
+  if (signs < 0) return exact_solve(n, original, first_column);
+  for (int r = 0; r < n; ++r) first_column[r] *= scale0;
+  return signs == 1;
+}
+
 // A vertex exactly on M (F(v_j) = 0: column j of M is e_0), the degenerate case that lattice
 // vertices on M make common. With column j moved first, M = [[1, 1ᵀ], [0, G]] for the k × k matrix G
 // of F at the other vertices, so M⁻¹ = [[1, −1ᵀG⁻¹], [0, G⁻¹]]: λ = e_j, row j of M⁻¹ is positive, and
 // the other rows are (0, rows of G⁻¹). τ is transverse iff every row of G⁻¹ is lexicographically
-// positive: a k × k question, usually decided in floating point. −1: undecided.
-int vertex_on_manifold(int n, const double* m, int j, double* lambda) {
+// positive: a k × k question, decided by the same filters and, only if they cannot, exactly.
+bool vertex_on_manifold(int n, const double* m, int j, double* lambda) {
   const int k = n - 1;
   std::array<double, kMaxN * kMaxN> g;  // column-major, k × k
   for (int c = 0, gc = 0; c < n; ++c) {
@@ -126,13 +310,10 @@ int vertex_on_manifold(int n, const double* m, int j, double* lambda) {
     for (int r = 1; r < n; ++r) g[gc * k + (r - 1)] = m[c * n + r];
     ++gc;
   }
-  SmallLu lu;
-  if (!lu.factor(k, g.data())) return -1;
   std::array<double, kMaxN> unused;
-  const int signs = certified_row_signs(k, g.data(), lu, unused.data());
-  if (signs != 1) return signs;
+  if (!lexicographically_positive_inverse(k, g.data(), unused.data())) return false;
   for (int r = 0; r < n; ++r) lambda[r] = r == j ? 1.0 : 0.0;
-  return 1;
+  return true;
 }
 
 }  // namespace
@@ -166,31 +347,8 @@ bool lexicographic_solve(int n, const double* m, double* lambda) {
     if (on_manifold >= 0) return false;
     on_manifold = c;
   }
-  if (on_manifold >= 0) {
-    const int decided = vertex_on_manifold(n, m, on_manifold, lambda);
-    return decided >= 0 ? decided == 1 : exact_solve(n, m, lambda);
-  }
-  SmallLu lu;
-  if (!lu.factor(n, m)) return exact_solve(n, m, lambda);
-  // Usually λ = M⁻¹·e₀ alone decides: a certainly negative λ_j rejects, all certainly positive
-  // accept (the lexicographic rule only looks further along a row whose leading entry is 0).
-  constexpr double u = std::numeric_limits<double>::epsilon() / 2;
-  const double factor = lu.error_factor();
-  if (n * u * factor < 1e-6) {
-    lu.solve_unit(0, lambda);
-    double size = 0;
-    for (int r = 0; r < n; ++r) size = std::max(size, std::abs(lambda[r]));
-    const double err = 8.0 * n * u * factor * size;
-    bool positive = true;
-    for (int r = 0; r < n; ++r) {
-      if (lambda[r] < -err) return false;
-      positive &= lambda[r] > err;
-    }
-    if (positive) return true;
-  }
-  // Undecided: the whole inverse, and the lexicographic signs of its rows.
-  const int signs = certified_row_signs(n, m, lu, lambda);
-  return signs >= 0 ? signs == 1 : exact_solve(n, m, lambda);
+  if (on_manifold >= 0) return vertex_on_manifold(n, m, on_manifold, lambda);
+  return lexicographically_positive_inverse(n, m, lambda);
 }
 
 }  // namespace coxmesh

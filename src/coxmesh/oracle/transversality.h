@@ -10,8 +10,10 @@ namespace coxmesh {
 /// (k+1)-simplex has exactly 0 or 2 transverse facets even when vertices lie on M.
 /// On success `lambda` (n values, ≥ 0, summing to 1) = the first column of M^{-1}: the barycentric
 /// coordinates of the unperturbed intersection point.
-/// Signs are decided in double precision when a forward error bound certifies them; otherwise
-/// (near-zero entries, ill-conditioned M) the inverse is recomputed in exact rational arithmetic.
+/// Signs are decided in double precision when a forward error bound certifies them, else in
+/// double-word (about 106-bit) arithmetic with its own bound (tiny entries: values of F that are
+/// rounding noise); only what neither certifies (exact zeros, ill-conditioned M) is recomputed in
+/// exact rational arithmetic. A vertex exactly on M reduces the question to a k × k one.
 bool lexicographic_solve(int n, const double* m, double* lambda);
 
 }  // namespace coxmesh
