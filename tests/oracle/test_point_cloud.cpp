@@ -151,6 +151,50 @@ TEST(PointCloud, ThreadsGiveTheSameResult) {
   EXPECT_EQ(two.topology.betti, (std::vector<std::size_t>{1, 2, 1}));
 }
 
+TEST(PointCloud, PreparationThreadsGiveTheSameProblem) {
+  // The spacing, the PCA and the edge checks run on the workers: every frame, count, seed and
+  // function value must be bit for bit the same for any number of threads (noisy surfaces with
+  // k = 1, a flat torus with k = 2 frames, and S³).
+  const std::pair<const char*, std::size_t> cases[] = {{"torus", 3000}, {"flat-torus", 2000}, {"s3", 2000}};
+  for (const auto& [name, n] : cases) {
+    const test::Samples s = test::sample_manifold(name, n, 0.01);
+    std::vector<PointCloudProblem> problems;
+    for (int threads : {1, 2, 3, 8}) {
+      PointCloudOptions options;
+      options.threads = threads;
+      problems.push_back(make_point_cloud_problem(s.points, s.d, s.m, options));
+    }
+    const SampleFrames& a = problems[0].model->frames;
+    for (std::size_t i = 1; i < problems.size(); ++i) {
+      const PointCloudProblem& p = problems[i];
+      const SampleFrames& b = p.model->frames;
+      EXPECT_EQ(p.diagnostics.spacing, problems[0].diagnostics.spacing) << name;
+      EXPECT_EQ(b.centers, a.centers) << name;
+      EXPECT_EQ(b.normals, a.normals) << name;
+      EXPECT_EQ(b.flatness, a.flatness) << name;
+      EXPECT_EQ(b.thickness, a.thickness) << name;
+      EXPECT_EQ(b.within_radius, a.within_radius) << name;
+      EXPECT_EQ(b.component, a.component) << name;
+      EXPECT_EQ(b.mean_neighbours, a.mean_neighbours) << name;
+      EXPECT_EQ(b.longest_gap, a.longest_gap) << name;
+      EXPECT_EQ(b.graph_edges, a.graph_edges) << name;
+      EXPECT_EQ(b.compared_edges, a.compared_edges) << name;
+      EXPECT_EQ(b.frustrated_edges, a.frustrated_edges) << name;
+      EXPECT_EQ(p.seeds, problems[0].seeds) << name;
+      EXPECT_EQ(p.edge_length, problems[0].edge_length) << name;
+      for (std::size_t j = 0; j < 200; ++j) {
+        std::vector<double> x(s.points.begin() + j * s.d, s.points.begin() + (j + 1) * s.d);
+        x[0] += 0.01 * static_cast<double>(j % 5);
+        std::vector<double> u(s.d), v(s.d);
+        problems[0].function->evaluate(x.data(), u.data());
+        p.function->evaluate(x.data(), v.data());
+        EXPECT_EQ(u, v) << name;
+      }
+    }
+    EXPECT_GT(a.graph_edges, 0u);
+  }
+}
+
 TEST(PointCloud, DefaultsFollowTheSpacing) {
   const test::Samples s = test::sample_manifold("sphere", 2000);
   PointCloudProblem p = make_point_cloud_problem(s.points, 3, 2);

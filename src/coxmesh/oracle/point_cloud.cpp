@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "coxmesh/lattice/simplex.h"
+#include "coxmesh/util/parallel_for.h"
 
 namespace coxmesh {
 
@@ -102,16 +103,19 @@ FunctionPtr tube_domain(std::shared_ptr<const SampleModel> model, double radius)
   return std::make_shared<TubeDomain>(std::move(model), radius);
 }
 
-double median_spacing(const SampleTree& tree) {
+double median_spacing(const SampleTree& tree, int threads) {
   const std::size_t n = tree.size();
   if (n < 2) return 0;
   std::vector<double> nearest(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    std::array<std::uint32_t, 2> index;
-    std::array<double, 2> d2;
-    tree.nearest_within(tree.point(i), std::numeric_limits<double>::infinity(), 2, index.data(), d2.data());
-    nearest[i] = d2[1];  // d2[0] = 0: the sample itself
-  }
+  constexpr std::size_t kBlock = 512;
+  WorkerPool(std::max(threads, 1)).run((n + kBlock - 1) / kBlock, [&](std::size_t block, int) {
+    for (std::size_t i = block * kBlock; i < std::min(n, (block + 1) * kBlock); ++i) {
+      std::array<std::uint32_t, 2> index;
+      std::array<double, 2> d2;
+      tree.nearest_within(tree.point(i), std::numeric_limits<double>::infinity(), 2, index.data(), d2.data());
+      nearest[i] = d2[1];  // d2[0] = 0: the sample itself
+    }
+  });
   std::nth_element(nearest.begin(), nearest.begin() + n / 2, nearest.end());
   return std::sqrt(nearest[n / 2]);
 }

@@ -34,7 +34,7 @@ FunctionPtr blended_frame_function(std::shared_ptr<const SampleModel> model, dou
 /// D(x) = |x − nearest sample| − radius: inside (D < 0) within `radius` of the samples.
 FunctionPtr tube_domain(std::shared_ptr<const SampleModel> model, double radius);
 
-/// Median nearest-neighbour distance of the samples (0 when all coincide).
-double median_spacing(const SampleTree& tree);
+/// Median nearest-neighbour distance of the samples (0 when all coincide), on `threads` workers.
+double median_spacing(const SampleTree& tree, int threads = 1);
 
 }  // namespace coxmesh

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "coxmesh/lattice/simplex.h"
+#include "coxmesh/util/parallel_for.h"
 
 namespace coxmesh {
 
@@ -79,7 +80,8 @@ PointCloudProblem make_point_cloud_problem(std::vector<double> samples, int d, i
   diag.samples = n;
   diag.ambient_dimension = d;
   diag.manifold_dimension = m;
-  diag.spacing = median_spacing(tree);
+  const int threads = resolve_threads(options.threads);
+  diag.spacing = median_spacing(tree, threads);
   if (!(diag.spacing > 0)) throw InputError("the samples coincide: no spacing to scale the mesh by");
   diag.radius = options.radius > 0 ? options.radius : options.radius_factor * diag.spacing;
 
@@ -88,6 +90,7 @@ PointCloudProblem make_point_cloud_problem(std::vector<double> samples, int d, i
   fo.min_neighbours = options.min_neighbours > 0 ? options.min_neighbours : 4 * (m + 1);
   fo.max_neighbours = std::max(64, fo.min_neighbours);
   fo.reference_normals = options.normals;
+  fo.threads = threads;
   diag.used_given_normals = !options.normals.empty();
   model->frames = estimate_frames(tree, m, fo);
   const SampleFrames& fr = model->frames;

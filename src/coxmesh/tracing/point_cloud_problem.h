@@ -33,6 +33,9 @@ struct PointCloudOptions {
   double blend_factor = 2.0;
   int seeds_per_component = 8;
   std::vector<double> normals;  ///< optional n × d normals given with the samples (codimension 1): fix the signs
+  /// Worker threads for the preparation (spacing, PCA, edge checks; 0: all hardware threads). The
+  /// problem is the same for any number.
+  int threads = 1;
 };
 
 /// What the construction found out about the samples (printed by the CLI).
