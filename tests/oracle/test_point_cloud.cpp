@@ -6,9 +6,11 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <new>
 
 #include "coxmesh/cell_complex/cell_complex.h"
@@ -195,13 +197,47 @@ TEST(PointCloud, PreparationThreadsGiveTheSameProblem) {
   }
 }
 
+TEST(PointCloud, TubeReusesTheNearestSampleOfTheFunction) {
+  // The tube takes the nearest sample's distance from the function's query at the same point when
+  // there is one: the values must be those of a query of its own and of a brute-force search.
+  for (const char* name : {"torus", "s3"}) {
+    const test::Samples s = test::sample_manifold(name, 2000, 0.01);
+    for (PointCloudFunction function : {PointCloudFunction::blended, PointCloudFunction::nearest}) {
+      PointCloudOptions options;
+      options.function = function;
+      const PointCloudProblem p = make_point_cloud_problem(s.points, s.d, s.m, options);
+      const PointCloudProblem other = make_point_cloud_problem(test::sample_manifold(name, 500).points, s.d, s.m);
+      std::vector<double> x(s.d), value(s.d);
+      for (std::size_t i = 0; i < 300; ++i) {
+        for (int t = 0; t < s.d; ++t) x[t] = s.points[i * s.d + t] * (1 + 0.2 * ((i % 9) - 4.0) / 4);
+        double alone, after_function, after_other;
+        p.domain->evaluate(x.data(), &alone);
+        p.function->evaluate(x.data(), value.data());
+        p.domain->evaluate(x.data(), &after_function);
+        other.function->evaluate(x.data(), value.data());  // another model's memo must not be used
+        p.domain->evaluate(x.data(), &after_other);
+        double best = std::numeric_limits<double>::infinity();
+        for (std::size_t j = 0; j < s.size(); ++j) {
+          double d2 = 0;
+          for (int t = 0; t < s.d; ++t) d2 += (x[t] - s.points[j * s.d + t]) * (x[t] - s.points[j * s.d + t]);
+          best = std::min(best, d2);
+        }
+        EXPECT_EQ(after_function, alone) << name;
+        EXPECT_EQ(after_other, alone) << name;
+        EXPECT_NEAR(alone, std::sqrt(best) - p.diagnostics.tube_radius, 1e-12) << name;
+      }
+    }
+  }
+}
+
 TEST(PointCloud, DefaultsFollowTheSpacing) {
   const test::Samples s = test::sample_manifold("sphere", 2000);
   PointCloudProblem p = make_point_cloud_problem(s.points, 3, 2);
   const PointCloudDiagnostics& g = p.diagnostics;
   EXPECT_GT(g.spacing, 0.02);  // 2000 random points on the unit sphere: about 0.037
   EXPECT_LT(g.spacing, 0.06);
-  EXPECT_DOUBLE_EQ(g.edge_length, 2 * g.spacing);
+  EXPECT_LT(g.thickness, 0.5 * g.spacing);  // clean samples: the coarser edge length
+  EXPECT_DOUBLE_EQ(g.edge_length, 2.5 * g.spacing);
   EXPECT_DOUBLE_EQ(g.radius, 5 * g.spacing);
   EXPECT_DOUBLE_EQ(g.tube_radius, 3 * g.edge_length);
   EXPECT_EQ(g.components, 1u);
@@ -216,6 +252,11 @@ TEST(PointCloud, DefaultsFollowTheSpacing) {
   EXPECT_GT(dv, 0);  // outside the tube
   EXPECT_EQ(make_point_cloud_problem(test::sample_manifold("two-spheres", 2000).points, 3, 2).diagnostics.components,
             2u);
+  // Noise of about a spacing: the finer edge length of 2 spacings.
+  const PointCloudDiagnostics noisy =
+      make_point_cloud_problem(test::sample_manifold("sphere", 2000, 0.04).points, 3, 2).diagnostics;
+  EXPECT_GT(noisy.thickness, 0.5 * noisy.spacing);
+  EXPECT_DOUBLE_EQ(noisy.edge_length, 2 * noisy.spacing);
 }
 
 #ifndef __SANITIZE_ADDRESS__

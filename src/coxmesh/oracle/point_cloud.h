@@ -4,6 +4,7 @@
 // docs/point_clouds.md; the whole problem (defaults, seeds) is in tracing/point_cloud_problem.h.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -18,6 +19,11 @@ namespace coxmesh {
 struct SampleModel {
   std::unique_ptr<SampleTree> tree;
   SampleFrames frames;
+  /// Distinct for every model made in this process (a key for per-thread memos; an address could be reused).
+  std::uint64_t serial = next_serial();
+
+ private:
+  static std::uint64_t next_serial();
 };
 
 /// F(x) = U_qᵀ(x − c_q), q the sample nearest to x, U_q and c_q its (synchronised) normal frame

@@ -102,7 +102,12 @@ PointCloudProblem make_point_cloud_problem(std::vector<double> samples, int d, i
   std::vector<double> thickness = fr.thickness;
   std::nth_element(thickness.begin(), thickness.begin() + n / 2, thickness.end());
   diag.thickness = thickness[n / 2];
-  const double edge_factor = options.edge_factor > 0 ? options.edge_factor : m <= 2 ? 2.0 : 2.0 * (m - 1);
+  // Curves and surfaces: 2.5 spacings when the samples lie within half a spacing of their local
+  // planes, 2 otherwise. Measured (docs/point_clouds.md): at 2.5 a noisy open disc (noise of 1 to
+  // 1.6 spacings) got holes that 2 did not, and a thin knotted tube (thickness 1 spacing) broke at 2.75.
+  const double edge_factor = options.edge_factor > 0 ? options.edge_factor
+                             : m <= 2                ? (diag.thickness <= 0.5 * diag.spacing ? 2.5 : 2.0)
+                                                     : 2.0 * (m - 1);
   diag.edge_length = options.edge_length > 0 ? options.edge_length : edge_factor * diag.spacing;
   // Orientable manifolds give no frustrated edges but a few isolated ones at sharp features or in
   // noise; a non-orientable one gives a seam of them across the manifold, whose edge count grows

@@ -18,7 +18,8 @@ enum class PointCloudFunction { nearest, blended };
 
 struct PointCloudOptions {
   double edge_length = 0;  ///< longest edge of the triangulation; 0: edge_factor × spacing
-  /// 0: 2 for curves and surfaces, 2(m − 1) above (the cell complex of an m-manifold grows like
+  /// 0: for curves and surfaces 2.5, or 2 when the samples scatter more than half a spacing from
+  /// their local planes (the median thickness); 2(m − 1) above (the cell complex of an m-manifold grows like
   /// (size/h)^m with a constant growing fast with m: S³ from 50,000 samples takes 0.3 GB at 4
   /// spacings, 1.9 GB at 2, with the same topology).
   double edge_factor = 0;
