@@ -121,7 +121,7 @@ void run(TraceCliOptions o) {
   std::optional<LoadedPointCloud> cloud;
   if (from_points) {
     cloud = load_point_cloud(o.points, o.m_option->count() ? std::optional<int>(o.params.m) : std::nullopt,
-                             o.params.dim, o.tri.edge_length);
+                             o.params.dim, o.tri.edge_length, o.threads);
     if (cloud->problem.diagnostics.frames_inconsistent && !o.quiet)
       std::cerr << "coxmesh: warning: " << cloud->problem.diagnostics.warning << "\n";
   }

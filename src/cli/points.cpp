@@ -30,7 +30,7 @@ void PointCloudCliOptions::add_to(CLI::App& cmd) {
 }
 
 LoadedPointCloud load_point_cloud(const PointCloudCliOptions& o, std::optional<int> m, std::optional<int> dim,
-                                  std::optional<double> edge_length) {
+                                  std::optional<double> edge_length, int threads) {
   const auto t0 = std::chrono::steady_clock::now();
   PointReadOptions ro;
   ro.dimension = dim.value_or(0);
@@ -48,6 +48,7 @@ LoadedPointCloud load_point_cloud(const PointCloudCliOptions& o, std::optional<i
   if (o.tube) po.tube = *o.tube;
   if (o.blend_width) po.blend_width = *o.blend_width;
   po.function = o.function == "nearest" ? PointCloudFunction::nearest : PointCloudFunction::blended;
+  po.threads = threads;
   if (o.use_normals) {
     if (set.normals.empty()) throw InputError("--use-normals: " + o.file + " has no normals");
     po.normals = set.normals;

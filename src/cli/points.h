@@ -34,9 +34,10 @@ struct LoadedPointCloud {
 };
 
 /// Reads and prepares the samples. m: the manifold dimension (default d − 1); dim: the expected
-/// d (optional); edge_length: the user's --edge-length (optional). Throws InputError.
+/// d (optional); edge_length: the user's --edge-length (optional); threads: --threads (0: all
+/// hardware threads; the result is the same for any number). Throws InputError.
 LoadedPointCloud load_point_cloud(const PointCloudCliOptions& o, std::optional<int> m, std::optional<int> dim,
-                                  std::optional<double> edge_length);
+                                  std::optional<double> edge_length, int threads = 1);
 
 /// The human lines of the trace summary (indented by two spaces), the warning included.
 void print_point_cloud(std::ostream& os, const LoadedPointCloud& pc);

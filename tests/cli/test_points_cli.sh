@@ -36,6 +36,11 @@ fails_with "points local-pca domain" "takes no --domain" "$bin" trace --points s
 (cat sphere.xyz; head -5 sphere.xyz) > dup.xyz
 check "points duplicates" "1" "$("$bin" trace --points dup.xyz --no-output | grep -c '5 exact duplicates removed')"
 
+# The preparation and the trace run on the workers: the same file, byte for byte, for any --threads.
+"$bin" trace --points sphere.xyz --threads 1 -o t1.ply --quiet
+"$bin" trace --points sphere.xyz --threads 3 -o t3.ply --quiet
+check "points threads same file" "yes" "$(cmp -s t1.ply t3.ply && [[ -s t1.ply ]] && echo yes || echo no)"
+
 # RP^2 in R^4 is not orientable: a warning on stderr, and the JSON says so.
 err=$("$bin" trace --points rp2.txt --m 2 --no-output 2>&1 >/dev/null)
 check "rp2 warning" "1" "$(grep -c '^coxmesh: warning: .*frustrated\|^coxmesh: warning: .*cannot be trusted' <<<"$err")"

@@ -6,9 +6,11 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <new>
 
 #include "coxmesh/cell_complex/cell_complex.h"
@@ -151,13 +153,91 @@ TEST(PointCloud, ThreadsGiveTheSameResult) {
   EXPECT_EQ(two.topology.betti, (std::vector<std::size_t>{1, 2, 1}));
 }
 
+TEST(PointCloud, PreparationThreadsGiveTheSameProblem) {
+  // The spacing, the PCA and the edge checks run on the workers: every frame, count, seed and
+  // function value must be bit for bit the same for any number of threads (noisy surfaces with
+  // k = 1, a flat torus with k = 2 frames, and S³).
+  const std::pair<const char*, std::size_t> cases[] = {{"torus", 3000}, {"flat-torus", 2000}, {"s3", 2000}};
+  for (const auto& [name, n] : cases) {
+    const test::Samples s = test::sample_manifold(name, n, 0.01);
+    std::vector<PointCloudProblem> problems;
+    for (int threads : {1, 2, 3, 8}) {
+      PointCloudOptions options;
+      options.threads = threads;
+      problems.push_back(make_point_cloud_problem(s.points, s.d, s.m, options));
+    }
+    const SampleFrames& a = problems[0].model->frames;
+    for (std::size_t i = 1; i < problems.size(); ++i) {
+      const PointCloudProblem& p = problems[i];
+      const SampleFrames& b = p.model->frames;
+      EXPECT_EQ(p.diagnostics.spacing, problems[0].diagnostics.spacing) << name;
+      EXPECT_EQ(b.centers, a.centers) << name;
+      EXPECT_EQ(b.normals, a.normals) << name;
+      EXPECT_EQ(b.flatness, a.flatness) << name;
+      EXPECT_EQ(b.thickness, a.thickness) << name;
+      EXPECT_EQ(b.within_radius, a.within_radius) << name;
+      EXPECT_EQ(b.component, a.component) << name;
+      EXPECT_EQ(b.mean_neighbours, a.mean_neighbours) << name;
+      EXPECT_EQ(b.longest_gap, a.longest_gap) << name;
+      EXPECT_EQ(b.graph_edges, a.graph_edges) << name;
+      EXPECT_EQ(b.compared_edges, a.compared_edges) << name;
+      EXPECT_EQ(b.frustrated_edges, a.frustrated_edges) << name;
+      EXPECT_EQ(p.seeds, problems[0].seeds) << name;
+      EXPECT_EQ(p.edge_length, problems[0].edge_length) << name;
+      for (std::size_t j = 0; j < 200; ++j) {
+        std::vector<double> x(s.points.begin() + j * s.d, s.points.begin() + (j + 1) * s.d);
+        x[0] += 0.01 * static_cast<double>(j % 5);
+        std::vector<double> u(s.d), v(s.d);
+        problems[0].function->evaluate(x.data(), u.data());
+        p.function->evaluate(x.data(), v.data());
+        EXPECT_EQ(u, v) << name;
+      }
+    }
+    EXPECT_GT(a.graph_edges, 0u);
+  }
+}
+
+TEST(PointCloud, TubeReusesTheNearestSampleOfTheFunction) {
+  // The tube takes the nearest sample's distance from the function's query at the same point when
+  // there is one: the values must be those of a query of its own and of a brute-force search.
+  for (const char* name : {"torus", "s3"}) {
+    const test::Samples s = test::sample_manifold(name, 2000, 0.01);
+    for (PointCloudFunction function : {PointCloudFunction::blended, PointCloudFunction::nearest}) {
+      PointCloudOptions options;
+      options.function = function;
+      const PointCloudProblem p = make_point_cloud_problem(s.points, s.d, s.m, options);
+      const PointCloudProblem other = make_point_cloud_problem(test::sample_manifold(name, 500).points, s.d, s.m);
+      std::vector<double> x(s.d), value(s.d);
+      for (std::size_t i = 0; i < 300; ++i) {
+        for (int t = 0; t < s.d; ++t) x[t] = s.points[i * s.d + t] * (1 + 0.2 * ((i % 9) - 4.0) / 4);
+        double alone, after_function, after_other;
+        p.domain->evaluate(x.data(), &alone);
+        p.function->evaluate(x.data(), value.data());
+        p.domain->evaluate(x.data(), &after_function);
+        other.function->evaluate(x.data(), value.data());  // another model's memo must not be used
+        p.domain->evaluate(x.data(), &after_other);
+        double best = std::numeric_limits<double>::infinity();
+        for (std::size_t j = 0; j < s.size(); ++j) {
+          double d2 = 0;
+          for (int t = 0; t < s.d; ++t) d2 += (x[t] - s.points[j * s.d + t]) * (x[t] - s.points[j * s.d + t]);
+          best = std::min(best, d2);
+        }
+        EXPECT_EQ(after_function, alone) << name;
+        EXPECT_EQ(after_other, alone) << name;
+        EXPECT_NEAR(alone, std::sqrt(best) - p.diagnostics.tube_radius, 1e-12) << name;
+      }
+    }
+  }
+}
+
 TEST(PointCloud, DefaultsFollowTheSpacing) {
   const test::Samples s = test::sample_manifold("sphere", 2000);
   PointCloudProblem p = make_point_cloud_problem(s.points, 3, 2);
   const PointCloudDiagnostics& g = p.diagnostics;
   EXPECT_GT(g.spacing, 0.02);  // 2000 random points on the unit sphere: about 0.037
   EXPECT_LT(g.spacing, 0.06);
-  EXPECT_DOUBLE_EQ(g.edge_length, 2 * g.spacing);
+  EXPECT_LT(g.thickness, 0.5 * g.spacing);  // clean samples: the coarser edge length
+  EXPECT_DOUBLE_EQ(g.edge_length, 2.5 * g.spacing);
   EXPECT_DOUBLE_EQ(g.radius, 5 * g.spacing);
   EXPECT_DOUBLE_EQ(g.tube_radius, 3 * g.edge_length);
   EXPECT_EQ(g.components, 1u);
@@ -172,6 +252,11 @@ TEST(PointCloud, DefaultsFollowTheSpacing) {
   EXPECT_GT(dv, 0);  // outside the tube
   EXPECT_EQ(make_point_cloud_problem(test::sample_manifold("two-spheres", 2000).points, 3, 2).diagnostics.components,
             2u);
+  // Noise of about a spacing: the finer edge length of 2 spacings.
+  const PointCloudDiagnostics noisy =
+      make_point_cloud_problem(test::sample_manifold("sphere", 2000, 0.04).points, 3, 2).diagnostics;
+  EXPECT_GT(noisy.thickness, 0.5 * noisy.spacing);
+  EXPECT_DOUBLE_EQ(noisy.edge_length, 2 * noisy.spacing);
 }
 
 #ifndef __SANITIZE_ADDRESS__

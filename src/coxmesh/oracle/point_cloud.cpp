@@ -3,14 +3,48 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
 #include "coxmesh/lattice/simplex.h"
+#include "coxmesh/util/parallel_for.h"
 
 namespace coxmesh {
 
+std::uint64_t SampleModel::next_serial() {
+  static std::atomic<std::uint64_t> counter{0};
+  return ++counter;
+}
+
 namespace {
+
+// The oracle evaluates F and then the tube at each lattice vertex (ImplicitOracle::evaluate): F's
+// query has found the nearest sample already, so each thread remembers its squared distance for
+// the last point, and the tube reuses it instead of a query of its own (the same value: the same
+// kd-tree and the same arithmetic find the same minimum).
+struct LastNearest {
+  std::uint64_t model = 0;  // SampleModel::serial; 0: nothing remembered
+  std::array<double, SampleTree::kFixedMaxDimension> x;
+  double distance2 = 0;
+};
+thread_local LastNearest last_nearest;
+
+void remember_nearest(const SampleModel& model, const double* x, double distance2) {
+  const int d = model.tree->dimension();
+  if (d > SampleTree::kFixedMaxDimension) return;
+  last_nearest.model = model.serial;
+  std::copy(x, x + d, last_nearest.x.begin());
+  last_nearest.distance2 = distance2;
+}
+
+double nearest_distance2(const SampleModel& model, const double* x) {
+  const int d = model.tree->dimension();
+  if (last_nearest.model == model.serial && std::equal(x, x + d, last_nearest.x.begin())) return last_nearest.distance2;
+  double d2;
+  model.tree->nearest(x, &d2);
+  return d2;
+}
 
 class NearestFrameFunction final : public ImplicitFunction {
  public:
@@ -21,6 +55,7 @@ class NearestFrameFunction final : public ImplicitFunction {
     const SampleFrames& fr = model_->frames;
     double d2;
     const std::uint32_t q = model_->tree->nearest(x, &d2);
+    remember_nearest(*model_, x, d2);
     const double* c = fr.centers.data() + static_cast<std::size_t>(q) * fr.d;
     const double* u = fr.frame(q);
     for (int j = 0; j < fr.k; ++j) {
@@ -47,6 +82,7 @@ class BlendedFrameFunction final : public ImplicitFunction {
     std::array<double, kBlend> d2;
     int count = tree.nearest_within(x, reach2_, kBlend, index.data(), d2.data());
     if (count == 0) count = tree.nearest_within(x, std::numeric_limits<double>::infinity(), 1, index.data(), d2.data());
+    remember_nearest(*model_, x, d2[0]);
     std::array<double, kMaxDimension> sum{};
     double total = 0;
     for (int i = 0; i < count; ++i) {
@@ -76,9 +112,7 @@ class TubeDomain final : public ImplicitFunction {
   int ambient_dimension() const override { return model_->tree->dimension(); }
   int codimension() const override { return 1; }
   void evaluate(const double* x, double* value) const override {
-    double d2;
-    model_->tree->nearest(x, &d2);
-    value[0] = std::sqrt(d2) - radius_;
+    value[0] = std::sqrt(nearest_distance2(*model_, x)) - radius_;
   }
 
  private:
@@ -102,16 +136,19 @@ FunctionPtr tube_domain(std::shared_ptr<const SampleModel> model, double radius)
   return std::make_shared<TubeDomain>(std::move(model), radius);
 }
 
-double median_spacing(const SampleTree& tree) {
+double median_spacing(const SampleTree& tree, int threads) {
   const std::size_t n = tree.size();
   if (n < 2) return 0;
   std::vector<double> nearest(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    std::array<std::uint32_t, 2> index;
-    std::array<double, 2> d2;
-    tree.nearest_within(tree.point(i), std::numeric_limits<double>::infinity(), 2, index.data(), d2.data());
-    nearest[i] = d2[1];  // d2[0] = 0: the sample itself
-  }
+  constexpr std::size_t kBlock = 512;
+  WorkerPool(std::max(threads, 1)).run((n + kBlock - 1) / kBlock, [&](std::size_t block, int) {
+    for (std::size_t i = block * kBlock; i < std::min(n, (block + 1) * kBlock); ++i) {
+      std::array<std::uint32_t, 2> index;
+      std::array<double, 2> d2;
+      tree.nearest_within(tree.point(i), std::numeric_limits<double>::infinity(), 2, index.data(), d2.data());
+      nearest[i] = d2[1];  // d2[0] = 0: the sample itself
+    }
+  });
   std::nth_element(nearest.begin(), nearest.begin() + n / 2, nearest.end());
   return std::sqrt(nearest[n / 2]);
 }

@@ -4,6 +4,7 @@
 // docs/point_clouds.md; the whole problem (defaults, seeds) is in tracing/point_cloud_problem.h.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -18,6 +19,11 @@ namespace coxmesh {
 struct SampleModel {
   std::unique_ptr<SampleTree> tree;
   SampleFrames frames;
+  /// Distinct for every model made in this process (a key for per-thread memos; an address could be reused).
+  std::uint64_t serial = next_serial();
+
+ private:
+  static std::uint64_t next_serial();
 };
 
 /// F(x) = U_qᵀ(x − c_q), q the sample nearest to x, U_q and c_q its (synchronised) normal frame
@@ -34,7 +40,7 @@ FunctionPtr blended_frame_function(std::shared_ptr<const SampleModel> model, dou
 /// D(x) = |x − nearest sample| − radius: inside (D < 0) within `radius` of the samples.
 FunctionPtr tube_domain(std::shared_ptr<const SampleModel> model, double radius);
 
-/// Median nearest-neighbour distance of the samples (0 when all coincide).
-double median_spacing(const SampleTree& tree);
+/// Median nearest-neighbour distance of the samples (0 when all coincide), on `threads` workers.
+double median_spacing(const SampleTree& tree, int threads = 1);
 
 }  // namespace coxmesh

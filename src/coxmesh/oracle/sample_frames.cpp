@@ -5,15 +5,20 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <numeric>
 
 #include "coxmesh/lattice/simplex.h"
+#include "coxmesh/util/parallel_for.h"
 
 namespace coxmesh {
 
 namespace {
 
 constexpr int kMax = kMaxDimension;
+constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+constexpr std::size_t kBlock = 256;  // samples or edges per task of the workers
 using Square = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMax, kMax>;  // no heap for d ≤ 31
 
 struct Edge {
@@ -52,6 +57,37 @@ Square overlap(const double* ui, const double* uj, int k, int d) {
   return a;
 }
 
+// det(U_iᵀU_j); for k = 1 the dot product itself.
+double overlap_determinant(const double* ui, const double* uj, int k, int d) {
+  if (k == 1) {
+    double s = 0;
+    for (int t = 0; t < d; ++t) s += ui[t] * uj[t];
+    return s;
+  }
+  return overlap(ui, uj, k, d).determinant();
+}
+
+// Sorts by (weight, a, b) edges already ordered by (a, b): a stable radix sort on the weight's
+// bits (mapped so that unsigned order is the order of the doubles), 11 bits a pass.
+void sort_by_weight(std::vector<Edge>& edges) {
+  auto key = [](double w) {
+    std::uint64_t u;
+    std::memcpy(&u, &w, sizeof u);
+    return (u >> 63) ? ~u : u | (std::uint64_t{1} << 63);
+  };
+  std::vector<Edge> buffer(edges.size());
+  constexpr int kBits = 11;
+  for (int shift = 0; shift < 64; shift += kBits) {
+    std::vector<std::size_t> count((std::size_t{1} << kBits) + 1, 0);
+    for (const Edge& e : edges) ++count[((key(e.weight) >> shift) & ((1u << kBits) - 1)) + 1];
+    if (std::any_of(count.begin(), count.end(), [&](std::size_t c) { return c == edges.size(); }))
+      continue;  // one digit everywhere: nothing to do
+    for (std::size_t b = 1; b < count.size(); ++b) count[b] += count[b - 1];
+    for (const Edge& e : edges) buffer[count[(key(e.weight) >> shift) & ((1u << kBits) - 1)]++] = e;
+    edges.swap(buffer);
+  }
+}
+
 // The orthogonal factor W Vᵀ of A = W Σ Vᵀ: the rotation (or reflection) nearest to A.
 Square polar(const Square& a) {
   Eigen::JacobiSVD<Square> svd(a, Eigen::ComputeFullU | Eigen::ComputeFullV);
@@ -77,55 +113,87 @@ SampleFrames estimate_frames(const SampleTree& tree, int m, const FrameOptions& 
   out.thickness.resize(n);
   out.within_radius.resize(n);
 
-  // Neighbourhoods and local PCA.
+  // Neighbourhoods and local PCA, in blocks of samples on the workers: each sample's results go
+  // to its own slots, so they do not depend on the number of threads.
   const int cap = std::max({options.max_neighbours, options.min_neighbours, 1}) + 1;  // the sample itself too
-  std::vector<std::uint32_t> nb(cap);
-  std::vector<double> nb_d2(cap);
-  std::vector<Edge> edges;
-  edges.reserve(n * options.graph_neighbours);
-  std::size_t total_neighbours = 0;
-  LocalSquare cov(d, d);
-  LocalVector mean(d);
-  for (std::size_t i = 0; i < n; ++i) {
-    const double* p = tree.point(i);
-    int count = tree.nearest_within(p, options.radius * options.radius, cap, nb.data(), nb_d2.data());
-    out.within_radius[i] = static_cast<std::uint16_t>(count - 1);
-    if (count < options.min_neighbours + 1)
-      count = tree.nearest_within(p, std::numeric_limits<double>::infinity(), options.min_neighbours + 1, nb.data(),
-                                  nb_d2.data());
-    total_neighbours += count - 1;
-    local_scatter(tree, nb.data(), count, mean, cov);
-    Eigen::SelfAdjointEigenSolver<Square> eig(cov, Eigen::ComputeEigenvectors);  // reads the lower triangle
-    double normal_part = 0;
-    for (int j = 0; j < k; ++j) {  // eigenvalues ascend: the first k span the normal space
-      normal_part += std::max(0.0, eig.eigenvalues()[j]);
-      for (int t = 0; t < d; ++t) out.normals[(i * k + j) * d + t] = eig.eigenvectors()(t, j);
+  const int graph_cap = std::max(options.graph_neighbours, 0) + 1;
+  std::vector<std::uint32_t> graph_ids(n * graph_cap, kNone);  // each sample's nearest (itself included)
+  std::vector<std::uint32_t> neighbours(n);
+  WorkerPool workers(std::max(options.threads, 1));
+  std::vector<std::vector<std::uint32_t>> nb_of(workers.size(), std::vector<std::uint32_t>(std::max(cap, graph_cap)));
+  std::vector<std::vector<double>> d2_of(workers.size(), std::vector<double>(std::max(cap, graph_cap)));
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
+  workers.run(blocks, [&](std::size_t block, int worker) {
+    std::uint32_t* nb = nb_of[worker].data();
+    double* nb_d2 = d2_of[worker].data();
+    LocalSquare cov(d, d);
+    LocalVector mean(d);
+    for (std::size_t i = block * kBlock; i < std::min(n, (block + 1) * kBlock); ++i) {
+      const double* p = tree.point(i);
+      int count = tree.nearest_within(p, options.radius * options.radius, cap, nb, nb_d2);
+      out.within_radius[i] = static_cast<std::uint16_t>(count - 1);
+      if (count < options.min_neighbours + 1)
+        count = tree.nearest_within(p, std::numeric_limits<double>::infinity(), options.min_neighbours + 1, nb, nb_d2);
+      neighbours[i] = static_cast<std::uint32_t>(count - 1);
+      local_scatter(tree, nb, count, mean, cov);
+      Eigen::SelfAdjointEigenSolver<Square> eig(cov, Eigen::ComputeEigenvectors);  // reads the lower triangle
+      double normal_part = 0;
+      for (int j = 0; j < k; ++j) {  // eigenvalues ascend: the first k span the normal space
+        normal_part += std::max(0.0, eig.eigenvalues()[j]);
+        for (int t = 0; t < d; ++t) out.normals[(i * k + j) * d + t] = eig.eigenvectors()(t, j);
+      }
+      out.flatness[i] = normal_part / std::max(eig.eigenvalues().sum(), 1e-300);
+      out.thickness[i] = std::sqrt(normal_part / count);
+      for (int t = 0; t < d; ++t) out.centers[i * d + t] = mean[t];
+      // The graph joins the nearest graph_neighbours whatever the radius: joined only within it,
+      // sparse stretches of a curve fell apart locally and the frames met again the long way round.
+      int graph = std::min(count, graph_cap);
+      if (graph < graph_cap)
+        graph = tree.nearest_within(p, std::numeric_limits<double>::infinity(), graph_cap, nb, nb_d2);
+      std::copy(nb, nb + graph, graph_ids.begin() + i * graph_cap);
     }
-    out.flatness[i] = normal_part / std::max(eig.eigenvalues().sum(), 1e-300);
-    out.thickness[i] = std::sqrt(normal_part / count);
-    for (int t = 0; t < d; ++t) out.centers[i * d + t] = mean[t];
-    // The graph joins the nearest graph_neighbours whatever the radius: joined only within it,
-    // sparse stretches of a curve fell apart locally and the frames met again the long way round.
-    int graph = std::min(count, options.graph_neighbours + 1);
-    if (graph < options.graph_neighbours + 1)
-      graph = tree.nearest_within(p, std::numeric_limits<double>::infinity(), options.graph_neighbours + 1, nb.data(),
-                                  nb_d2.data());
-    for (int j = 0; j < graph; ++j)
-      if (nb[j] != i)
-        edges.push_back({0.0, static_cast<std::uint32_t>(std::min<std::size_t>(i, nb[j])),
-                         static_cast<std::uint32_t>(std::max<std::size_t>(i, nb[j]))});
-  }
+  });
+  std::size_t total_neighbours = 0;
+  for (std::uint32_t c : neighbours) total_neighbours += c;
   out.mean_neighbours = static_cast<double>(total_neighbours) / n;
 
-  // The neighbour graph (each edge once), weighted 1 − |det(U_iᵀU_j)|: 0 when the normal spaces agree.
-  std::sort(edges.begin(), edges.end(),
-            [](const Edge& x, const Edge& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; });
-  edges.erase(
-      std::unique(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.a == y.a && x.b == y.b; }),
-      edges.end());
-  for (Edge& e : edges) e.weight = 1 - std::abs(overlap(out.frame(e.a), out.frame(e.b), k, d).determinant());
+  // The neighbour graph, each edge once, ordered by (a, b): bucketed by the smaller end, each
+  // bucket's other ends sorted (a counting sort; sorting all the edges took a third of the time).
+  std::vector<std::size_t> first(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int j = 0; j < graph_cap; ++j) {
+      const std::uint32_t o = graph_ids[i * graph_cap + j];
+      if (o != kNone && o != i) ++first[std::min<std::size_t>(i, o) + 1];
+    }
+  for (std::size_t i = 0; i < n; ++i) first[i + 1] += first[i];
+  std::vector<std::uint32_t> other(first[n]);
+  {
+    std::vector<std::size_t> fill(first.begin(), first.end() - 1);
+    for (std::size_t i = 0; i < n; ++i)
+      for (int j = 0; j < graph_cap; ++j) {
+        const std::uint32_t o = graph_ids[i * graph_cap + j];
+        if (o == kNone || o == i) continue;
+        if (o > i)
+          other[fill[i]++] = o;
+        else
+          other[fill[o]++] = static_cast<std::uint32_t>(i);
+      }
+  }
+  std::vector<Edge> edges;
+  edges.reserve(other.size());
+  for (std::size_t a = 0; a < n; ++a) {
+    std::sort(other.begin() + first[a], other.begin() + first[a + 1]);
+    const auto end = std::unique(other.begin() + first[a], other.begin() + first[a + 1]);
+    for (auto it = other.begin() + first[a]; it != end; ++it)
+      edges.push_back({0.0, static_cast<std::uint32_t>(a), *it});
+  }
+  // Weighted 1 − |det(U_iᵀU_j)|: 0 when the normal spaces agree.
+  workers.run((edges.size() + kBlock - 1) / kBlock, [&](std::size_t block, int) {
+    for (std::size_t e = block * kBlock; e < std::min(edges.size(), (block + 1) * kBlock); ++e)
+      edges[e].weight = 1 - std::abs(overlap_determinant(out.frame(edges[e].a), out.frame(edges[e].b), k, d));
+  });
   out.graph_edges = edges.size();
-  std::sort(edges.begin(), edges.end());
+  sort_by_weight(edges);
 
   // The largest gap: the longest edge of a Euclidean minimum spanning forest of the graph restricted
   // to samples with at least m + 1 others within the radius (so that outliers do not count). M
@@ -139,7 +207,7 @@ SampleFrames estimate_frames(const SampleTree& tree, int m, const FrameOptions& 
           s += (tree.point(e.a)[t] - tree.point(e.b)[t]) * (tree.point(e.a)[t] - tree.point(e.b)[t]);
         by_length.push_back({s, e.a, e.b});
       }
-    std::sort(by_length.begin(), by_length.end());
+    sort_by_weight(by_length);
     UnionFind gaps(n);
     for (const Edge& e : by_length)
       if (gaps.unite(e.a, e.b)) out.longest_gap = std::max(out.longest_gap, std::sqrt(e.weight));
@@ -209,24 +277,34 @@ SampleFrames estimate_frames(const SampleTree& tree, int m, const FrameOptions& 
   // Frustration: edges between comparable normal spaces (all principal angles ≤ 45°) whose frames
   // do not agree: a reflection (det < 0), or a rotation by more than 60° (‖R − I‖₂ = 2 sin(θ/2) > 1).
   const double cos45 = std::sqrt(0.5);
-  for (const Edge& e : edges) {
-    const Square a = overlap(out.frame(e.a), out.frame(e.b), k, d);
-    if (k == 1) {
-      if (std::abs(a(0, 0)) < cos45) continue;
-      ++out.compared_edges;
-      if (a(0, 0) < 0) ++out.frustrated_edges;
-      continue;
+  const std::size_t edge_blocks = (edges.size() + kBlock - 1) / kBlock;
+  std::vector<std::size_t> compared(edge_blocks, 0), frustrated(edge_blocks, 0);
+  workers.run(edge_blocks, [&](std::size_t block, int) {
+    for (std::size_t i = block * kBlock; i < std::min(edges.size(), (block + 1) * kBlock); ++i) {
+      const Edge& e = edges[i];
+      if (k == 1) {
+        const double a = overlap_determinant(out.frame(e.a), out.frame(e.b), 1, d);
+        if (std::abs(a) < cos45) continue;
+        ++compared[block];
+        if (a < 0) ++frustrated[block];
+        continue;
+      }
+      const Square a = overlap(out.frame(e.a), out.frame(e.b), k, d);
+      Eigen::JacobiSVD<Square> svd(a, Eigen::ComputeFullU | Eigen::ComputeFullV);
+      if (svd.singularValues().minCoeff() < cos45) continue;
+      ++compared[block];
+      const Square r = svd.matrixU() * svd.matrixV().transpose();
+      if (r.determinant() < 0) {
+        ++frustrated[block];
+        continue;
+      }
+      const Square diff = r - Square::Identity(k, k);
+      if (Eigen::JacobiSVD<Square>(diff).singularValues()[0] > 1) ++frustrated[block];
     }
-    Eigen::JacobiSVD<Square> svd(a, Eigen::ComputeFullU | Eigen::ComputeFullV);
-    if (svd.singularValues().minCoeff() < cos45) continue;
-    ++out.compared_edges;
-    const Square r = svd.matrixU() * svd.matrixV().transpose();
-    if (r.determinant() < 0) {
-      ++out.frustrated_edges;
-      continue;
-    }
-    const Square diff = r - Square::Identity(k, k);
-    if (Eigen::JacobiSVD<Square>(diff).singularValues()[0] > 1) ++out.frustrated_edges;
+  });
+  for (std::size_t b = 0; b < edge_blocks; ++b) {
+    out.compared_edges += compared[b];
+    out.frustrated_edges += frustrated[b];
   }
   return out;
 }

@@ -15,6 +15,7 @@ struct FrameOptions {
   int min_neighbours = 8;     ///< fewer samples within the radius: the nearest min_neighbours instead
   int max_neighbours = 64;    ///< at most this many nearest samples within the radius go into the PCA
   int graph_neighbours = 12;  ///< the nearest this many samples (within the radius or not) are joined in the graph
+  int threads = 1;  ///< worker threads for the PCA and the edge checks (the result is the same for any number)
   /// Normals given with the samples (n × d, codimension 1 only; empty if none): they fix the sign
   /// of each estimated normal instead of the propagation along the tree.
   std::vector<double> reference_normals;

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "coxmesh/lattice/simplex.h"
+#include "coxmesh/util/parallel_for.h"
 
 namespace coxmesh {
 
@@ -79,7 +80,8 @@ PointCloudProblem make_point_cloud_problem(std::vector<double> samples, int d, i
   diag.samples = n;
   diag.ambient_dimension = d;
   diag.manifold_dimension = m;
-  diag.spacing = median_spacing(tree);
+  const int threads = resolve_threads(options.threads);
+  diag.spacing = median_spacing(tree, threads);
   if (!(diag.spacing > 0)) throw InputError("the samples coincide: no spacing to scale the mesh by");
   diag.radius = options.radius > 0 ? options.radius : options.radius_factor * diag.spacing;
 
@@ -88,6 +90,7 @@ PointCloudProblem make_point_cloud_problem(std::vector<double> samples, int d, i
   fo.min_neighbours = options.min_neighbours > 0 ? options.min_neighbours : 4 * (m + 1);
   fo.max_neighbours = std::max(64, fo.min_neighbours);
   fo.reference_normals = options.normals;
+  fo.threads = threads;
   diag.used_given_normals = !options.normals.empty();
   model->frames = estimate_frames(tree, m, fo);
   const SampleFrames& fr = model->frames;
@@ -99,7 +102,12 @@ PointCloudProblem make_point_cloud_problem(std::vector<double> samples, int d, i
   std::vector<double> thickness = fr.thickness;
   std::nth_element(thickness.begin(), thickness.begin() + n / 2, thickness.end());
   diag.thickness = thickness[n / 2];
-  const double edge_factor = options.edge_factor > 0 ? options.edge_factor : m <= 2 ? 2.0 : 2.0 * (m - 1);
+  // Curves and surfaces: 2.5 spacings when the samples lie within half a spacing of their local
+  // planes, 2 otherwise. Measured (docs/point_clouds.md): at 2.5 a noisy open disc (noise of 1 to
+  // 1.6 spacings) got holes that 2 did not, and a thin knotted tube (thickness 1 spacing) broke at 2.75.
+  const double edge_factor = options.edge_factor > 0 ? options.edge_factor
+                             : m <= 2                ? (diag.thickness <= 0.5 * diag.spacing ? 2.5 : 2.0)
+                                                     : 2.0 * (m - 1);
   diag.edge_length = options.edge_length > 0 ? options.edge_length : edge_factor * diag.spacing;
   // Orientable manifolds give no frustrated edges but a few isolated ones at sharp features or in
   // noise; a non-orientable one gives a seam of them across the manifold, whose edge count grows

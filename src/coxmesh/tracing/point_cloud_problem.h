@@ -18,7 +18,8 @@ enum class PointCloudFunction { nearest, blended };
 
 struct PointCloudOptions {
   double edge_length = 0;  ///< longest edge of the triangulation; 0: edge_factor × spacing
-  /// 0: 2 for curves and surfaces, 2(m − 1) above (the cell complex of an m-manifold grows like
+  /// 0: for curves and surfaces 2.5, or 2 when the samples scatter more than half a spacing from
+  /// their local planes (the median thickness); 2(m − 1) above (the cell complex of an m-manifold grows like
   /// (size/h)^m with a constant growing fast with m: S³ from 50,000 samples takes 0.3 GB at 4
   /// spacings, 1.9 GB at 2, with the same topology).
   double edge_factor = 0;
@@ -33,6 +34,9 @@ struct PointCloudOptions {
   double blend_factor = 2.0;
   int seeds_per_component = 8;
   std::vector<double> normals;  ///< optional n × d normals given with the samples (codimension 1): fix the signs
+  /// Worker threads for the preparation (spacing, PCA, edge checks; 0: all hardware threads). The
+  /// problem is the same for any number.
+  int threads = 1;
 };
 
 /// What the construction found out about the samples (printed by the CLI).
