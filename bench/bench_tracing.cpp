@@ -345,31 +345,33 @@ std::vector<Case> make_cases() {
     cases.push_back({name, d, m, scale, coxmesh::sphere(m, d, 1.0), nullptr, seed,
                      gudhi_case(gct::Function_Sm_in_Rd(1.0, m, d), seed, m)});
   };
+  auto torus_case = [&](double scale) {
+    const double major = 1.0, minor = 0.4;
+    std::vector<double> seed{major + minor, 0, 0};
+    // GUDHI's Function_torus_in_R3(R, r) is z² + (√(x²+y²) − r)² − R²: r is the major radius.
+    cases.push_back({"torus in R^3", 3, 2, scale, coxmesh::torus(major, minor), nullptr, seed,
+                     gudhi_case(gct::Function_torus_in_R3(minor, major), seed, 2)});
+  };
+  const auto circle = gct::Function_Sm_in_Rd(1.0, 1);
+  const auto cox_flat_torus = coxmesh::product(coxmesh::sphere(1, 2, 1.0), coxmesh::sphere(1, 2, 1.0));
+  auto flat_torus_case = [&](double scale) {
+    std::vector<double> seed{1, 0, 1, 0};
+    cases.push_back({"flat torus in R^4", 4, 2, scale, cox_flat_torus, nullptr, seed,
+                     gudhi_case(gct::make_product_function(circle, circle), seed, 2)});
+  };
   {
     std::vector<double> seed{1.0, 0.0};
     cases.push_back({"circle in R^2", 2, 1, 0.0003, coxmesh::sphere(1, 2, 1.0), nullptr, seed,
                      gudhi_case(gct::Function_Sm_in_Rd(1.0, 1, 2), seed, 1)});
   }
   sphere_case(2, 3, 0.044);
-  {
-    const double major = 1.0, minor = 0.4;
-    std::vector<double> seed{major + minor, 0, 0};
-    // GUDHI's Function_torus_in_R3(R, r) is z² + (√(x²+y²) − r)² − R²: r is the major radius.
-    cases.push_back({"torus in R^3", 3, 2, 0.048, coxmesh::torus(major, minor), nullptr, seed,
-                     gudhi_case(gct::Function_torus_in_R3(minor, major), seed, 2)});
-  }
+  torus_case(0.048);
   sphere_case(2, 4, 0.08);
   sphere_case(3, 4, 0.2);
   sphere_case(1, 5, 0.002);
   sphere_case(2, 5, 0.115);
   sphere_case(3, 6, 0.45);
-  const auto circle = gct::Function_Sm_in_Rd(1.0, 1);
-  const auto cox_flat_torus = coxmesh::product(coxmesh::sphere(1, 2, 1.0), coxmesh::sphere(1, 2, 1.0));
-  {
-    std::vector<double> seed{1, 0, 1, 0};
-    cases.push_back({"flat torus in R^4", 4, 2, 0.14, cox_flat_torus, nullptr, seed,
-                     gudhi_case(gct::make_product_function(circle, circle), seed, 2)});
-  }
+  flat_torus_case(0.14);
   {
     const int d = 6;
     const coxmesh::FunctionPtr f = coxmesh::moment_curve(d);
@@ -395,19 +397,10 @@ std::vector<Case> make_cases() {
   // The scales of GUDHI's own examples, where its trace takes seconds.
   const std::size_t small = cases.size();
   sphere_case(2, 3, 0.02);
-  {
-    const double major = 1.0, minor = 0.4;
-    std::vector<double> seed{major + minor, 0, 0};
-    cases.push_back({"torus in R^3", 3, 2, 0.024, coxmesh::torus(major, minor), nullptr, seed,
-                     gudhi_case(gct::Function_torus_in_R3(minor, major), seed, 2)});
-  }
+  torus_case(0.024);
   sphere_case(3, 4, 0.12);
   sphere_case(3, 6, 0.3);
-  {
-    std::vector<double> seed{1, 0, 1, 0};
-    cases.push_back({"flat torus in R^4", 4, 2, 0.06, cox_flat_torus, nullptr, seed,
-                     gudhi_case(gct::make_product_function(circle, circle), seed, 2)});
-  }
+  flat_torus_case(0.06);
   for (std::size_t i = small; i < cases.size(); ++i) cases[i].name += ", GUDHI's scale";
   // The order of the tables in docs/benchmarks.md: circle R², S² R³, torus R³, S² R⁴, S³ R⁴, S¹ R⁵, S² R⁵, S³ R⁶,
   // flat torus R⁴, moment curve R⁶ in a ball, flat torus R⁴ cut by a hyperplane; then GUDHI's scales.

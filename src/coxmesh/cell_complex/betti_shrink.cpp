@@ -5,29 +5,13 @@
 // algorithm", 2009) when b has no other remaining facet. Either is the elimination of the pivot
 // (a, b) of the boundary matrix, which over Z/2 changes no other entry, so homology is kept. What
 // remains need not be a subcomplex, only a chain complex: the boundary matrix restricted to it.
-#include <numeric>
-
 #include "coxmesh/cell_complex/betti.h"
 #include "coxmesh/cell_complex/global_cells.h"
+#include "coxmesh/util/union_find.h"
 
 namespace coxmesh {
 
 namespace {
-
-// Components of the vertex graph (interior and boundary edges): union–find with path halving.
-struct Components {
-  std::vector<std::uint32_t> parent;
-  explicit Components(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  std::uint32_t find(std::uint32_t v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  }
-  bool join(std::uint32_t a, std::uint32_t b) {  // true when they were apart
-    a = find(a), b = find(b);
-    parent[a] = b;
-    return a != b;
-  }
-};
 
 constexpr std::uint32_t kRemoved = 0xFFFFFFFFu;
 
@@ -141,14 +125,14 @@ class Reducer {
 std::vector<std::uint32_t> closed_top_pieces(const CellComplex& cc) {
   const int m = cc.manifold_dimension;
   const CellLevel& top = cc.interior[m];
-  Components pieces(top.size());
+  UnionFind pieces(top.size());
   std::vector<std::uint32_t> first(cc.interior[m - 1].size(), CellLevel::kNone);
   for (std::uint32_t c = 0; c < top.size(); ++c)
     for (std::uint32_t f : top.facets(c))
       if (first[f] == CellLevel::kNone)
         first[f] = c;
       else
-        pieces.join(first[f], c);
+        pieces.unite(first[f], c);
   std::vector<std::uint8_t> open(top.size(), 0);
   if (!top.boundary_facet.empty())
     for (std::uint32_t c = 0; c < top.size(); ++c)
@@ -167,14 +151,14 @@ std::vector<std::size_t> betti_numbers(const CellComplex& cc, bool manifold) {
   if (m == 0) return {cells.count()};
   // β_0: the components of the vertex graph.
   const std::size_t vertices = cells.start(1, false);
-  Components components(vertices);
+  UnionFind components(vertices);
   const std::size_t first_edge = cells.start(1, false);
   std::vector<std::uint8_t> tree_edge(cells.start(2, false) - first_edge, 0);  // a spanning forest's edges
   for (std::size_t g = first_edge; g < cells.start(2, false); ++g) {
     std::uint32_t ends[2] = {0, 0}, n = 0;
     cells.for_each_facet(g, [&](std::size_t v) { ends[n++ & 1] = static_cast<std::uint32_t>(v); });
     // (closed complex: edge cells have two ends)
-    tree_edge[g - first_edge] = components.join(ends[0], ends[1]);
+    tree_edge[g - first_edge] = components.unite(ends[0], ends[1]);
   }
   std::size_t components_count = vertices;
   for (std::uint8_t t : tree_edge) components_count -= t;

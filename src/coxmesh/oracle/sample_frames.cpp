@@ -11,6 +11,7 @@
 
 #include "coxmesh/lattice/simplex.h"
 #include "coxmesh/util/parallel_for.h"
+#include "coxmesh/util/union_find.h"
 
 namespace coxmesh {
 
@@ -27,21 +28,6 @@ struct Edge {
   bool operator<(const Edge& o) const {
     if (weight != o.weight) return weight < o.weight;
     return a != o.a ? a < o.a : b < o.b;
-  }
-};
-
-struct UnionFind {
-  std::vector<std::uint32_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  bool unite(std::uint32_t a, std::uint32_t b) {
-    a = find(a), b = find(b);
-    if (a == b) return false;
-    parent[std::max(a, b)] = std::min(a, b);
-    return true;
   }
 };
 
