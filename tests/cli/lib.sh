@@ -27,3 +27,8 @@ exits_with() {  # exits_with NAME STATUS PATTERN CMD...: exit status STATUS and 
     echo "ok   $name"; passes=$((passes + 1))
   else echo "FAIL $name: status $status (expected $want), stderr [$err]"; fails=$((fails + 1)); fi
 }
+require_vtk() {  # VTK's Python module must be there (Debian python3-vtk9): missing is a failure, not a skip
+  if ! /usr/bin/python3 -c 'import vtk' 2>/dev/null; then
+    echo "FAIL: /usr/bin/python3 cannot import vtk (install the Debian package python3-vtk9)"; exit 1
+  fi
+}

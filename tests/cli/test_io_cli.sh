@@ -8,10 +8,7 @@ source "$(dirname "$0")/lib.sh"
 py=/usr/bin/python3
 cd "$tmp"
 
-# VTK's Python module must be there: a missing module is a failure, not a skip.
-if ! "$py" -c 'import vtk' 2>/dev/null; then
-  echo "FAIL: /usr/bin/python3 cannot import vtk (install the Debian package python3-vtk9)"; exit 1
-fi
+require_vtk
 
 # The summary without what legitimately differs between two runs (timings, memory, names, files).
 stable() {

@@ -7,9 +7,7 @@ source "$(dirname "$0")/lib.sh"
 py=/usr/bin/python3
 cd "$tmp"
 
-if ! "$py" -c 'import vtk' 2>/dev/null; then
-  echo "FAIL: /usr/bin/python3 cannot import vtk (install the Debian package python3-vtk9)"; exit 1
-fi
+require_vtk
 
 # The torus as polygons (OFF) gives the expected triangle count: the sum of (sides - 2).
 "$bin" trace --preset torus --edge-length 0.1 -o poly.off -q
