@@ -1,7 +1,5 @@
 // coxmesh trace: mesh a manifold given by a preset, by equations typed as text or by samples
 // (thesis Ch. 4), report its topology and write it to a file.
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -17,7 +15,9 @@
 #include "coxmesh/oracle/presets.h"
 #include "coxmesh/tracing/local_pca_oracle.h"
 #include "points.h"
+#include "progress.h"
 #include "report.h"
+#include "trace_summary.h"
 
 namespace coxmesh::cli {
 
@@ -42,53 +42,6 @@ struct TraceCliOptions {
   const CLI::Option *function_given = nullptr, *dim_given = nullptr, *domain_center_given = nullptr;
   PointCloudCliOptions points;            // --points FILE and its options (points.h)
   const CLI::Option* m_option = nullptr;  // --m: also the manifold dimension of --points
-};
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-// Progress on stderr once a run has lasted about a second: one updated line on a terminal, plain
-// lines (at most one every 2 s) otherwise. Never used with --json or --quiet.
-class ProgressDisplay {
- public:
-  ProgressDisplay() : tty_(isatty(STDERR_FILENO) != 0), start_(Clock::now()), last_(start_) {}
-  ~ProgressDisplay() { clear(); }
-
-  void traced(std::size_t simplices) {
-    const auto now = Clock::now();
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
-    if (elapsed < 1.0 || (shown_ && std::chrono::duration<double>(now - last_).count() < (tty_ ? 0.1 : 2.0))) return;
-    last_ = now;
-    show("tracing: " + std::to_string(simplices) + " simplices, " +
-         std::to_string(static_cast<long long>(simplices / elapsed)) + " simplices/s, " + seconds(elapsed));
-  }
-  // A later phase (cell complex, topology, writing): shown only when progress is already on screen.
-  void phase(const std::string& what) {
-    if (shown_) show(what + "... (" + seconds(seconds_since(start_)) + ")");
-  }
-  void clear() {
-    if (tty_ && shown_) std::fputs("\r\033[K", stderr);
-    shown_ = false;
-  }
-
- private:
-  static std::string seconds(double s) {
-    char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%.1f s", s);
-    return buffer;
-  }
-  void show(const std::string& line) {
-    if (tty_)
-      std::fprintf(stderr, "\r\033[K  %s", line.c_str());
-    else
-      std::fprintf(stderr, "coxmesh: %s\n", line.c_str());
-    std::fflush(stderr);
-    shown_ = true;
-  }
-
-  bool tty_, shown_ = false;
-  Clock::time_point start_, last_;
 };
 
 void run(TraceCliOptions o) {
@@ -288,7 +241,6 @@ void run(TraceCliOptions o) {
         mo);
   }
   const CellComplex& cc = report.cells;
-  const TopologyReport& topo = report.topology;
   const std::size_t automatic = cloud ? cloud->problem.seeds.size() : report.automatic_seeds;
   if (!o.json)
     for (const std::string& w : report.warnings) std::cerr << "coxmesh: warning: " << w << "\n";
@@ -317,74 +269,20 @@ void run(TraceCliOptions o) {
   }
   if (progress) progress->clear();
 
+  TraceSummary summary{name, d, report, cloud ? &*cloud : nullptr};
+  if (!cloud)
+    summary.source = from_text ? std::pair<std::string, std::string>{"function", o.function}
+                               : std::pair<std::string, std::string>{"preset", o.preset};
+  summary.point_cloud_oracle = o.points.oracle;
+  summary.local_pca_defects = defects;
+  summary.automatic_seeds = automatic;
+  if (write) summary.output = TraceSummary::Output{output, format, written, write_s};
   // With -o - the mesh goes to standard output and the summary to standard error.
   std::ostream& out = output == "-" ? std::cerr : std::cout;
-  if (o.json) {
-    nlohmann::json j = topology_json(cc, topo);
-    if (cloud) {
-      j["point_cloud"] = point_cloud_json(*cloud);
-      j["point_cloud"]["oracle"] = o.points.oracle;
-      if (defects) j["point_cloud"]["local_pca_defects"] = *defects;
-    } else if (from_text)
-      j["function"] = o.function;
-    else
-      j["preset"] = o.preset;
-    j["function_evaluations"] = report.function_evaluations;
-    j["oracle_calls"] = report.oracle_calls;
-    j["seeds"] = report.seeds;
-    j["automatic_seeds"] = automatic;
-    j["complete"] = report.status == TraceStatus::complete;
-    if (!report.message.empty()) j["message"] = report.message;
-    if (!report.warnings.empty()) j["warnings"] = report.warnings;
-    j["timings"] = {{"trace_seconds", report.trace_seconds},
-                    {"cell_complex_seconds", report.cell_complex_seconds},
-                    {"topology_seconds", report.topology_seconds}};
-    if (report.refinement) {
-      j["refinement"] = {{"max_abs_f_before", report.refinement->max_abs_f_before},
-                         {"max_abs_f_after", report.refinement->max_abs_f_after},
-                         {"vertices", report.refinement->vertices},
-                         {"not_refined", report.refinement->not_refined}};
-      j["timings"]["refine_seconds"] = report.refinement->seconds;
-    }
-    if (write) {
-      j["timings"]["write_seconds"] = write_s;
-      j["output"] = {{"path", output},
-                     {"format", format_name(format)},
-                     {"points", written.points},
-                     {"cells", written.cells},
-                     {"skipped_cells", written.skipped}};
-    }
-    j["peak_memory_bytes"] = peak_memory_bytes();
-    out << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
-  } else if (!o.quiet) {
-    out << name << ": " << cc.manifold_dimension << "-manifold in R^" << d << "\n";
-    if (cloud) print_point_cloud(out, *cloud);
-    if (defects)
-      out << "  local-pca defects  " << *defects
-          << " cofacets of traced simplices see an odd number of intersected facets (0: a manifold)\n";
-    print_topology(out, cc, topo);
-    if (automatic)
-      out << "  seeds              " << automatic << (cloud ? " samples" : " found automatically in the box") << "\n";
-    out << "  F evaluations      " << report.function_evaluations << " (" << report.oracle_calls << " oracle calls)\n"
-        << "  time               trace " << report.trace_seconds << " s ("
-        << static_cast<long long>(cc.interior[0].size() / std::max(report.trace_seconds, 1e-9))
-        << " simplices/s), cell complex " << report.cell_complex_seconds << " s, topology " << report.topology_seconds
-        << " s";
-    if (report.refinement) out << ", refine " << report.refinement->seconds << " s";
-    if (write) out << ", write " << write_s << " s";
-    out << "\n  peak memory        " << peak_memory_bytes() / (1 << 20) << " MiB\n";
-    if (write) {
-      out << "  output             " << output << " (" << format_name(format) << ", " << written.points << " points, "
-          << written.cells << " cells";
-      if (written.skipped) out << "; " << written.skipped << " open cells at the cut not written";
-      out << ")\n";
-    }
-    if (report.refinement)
-      out << "  refinement         max |F| " << report.refinement->max_abs_f_before << " -> "
-          << report.refinement->max_abs_f_after << " (" << report.refinement->not_refined << " of "
-          << report.refinement->vertices << " vertices not refined)\n";
-    if (!report.message.empty()) out << "  note: " << report.message << "\n";
-  }
+  if (o.json)
+    print_trace_json(out, summary);
+  else if (!o.quiet)
+    print_trace_lines(out, summary);
 }
 
 }  // namespace
