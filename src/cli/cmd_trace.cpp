@@ -211,6 +211,29 @@ void run(TraceCliOptions o) {
   mo.refine = o.refine;
   // Expression functions are not thread-safe: every worker but the first gets its own.
   bool first = true;
+  // Writing needs no topology: with several threads it runs while the topology is computed.
+  WrittenCounts written;
+  double write_s = 0;
+  const WhileTopology write_file = [&](const MeshReport& r) {
+    if (progress) progress->phase("writing " + output);
+    WriteOptions wo;
+    wo.projection = o.project;
+    wo.pole = pole;
+    wo.simplices = o.simplices;
+    wo.native.source = cloud ? "points " + o.points.file : from_text ? "function " + o.function : "preset " + o.preset;
+    for (const std::string& text : o.domains) wo.native.source += "; domain " + text;
+    if (o.domain_ball) wo.native.source += "; domain-ball " + std::to_string(*o.domain_ball);
+    if (!o.cut.empty()) wo.native.source += "; cut " + o.cut;
+    wo.native.complete = r.status == TraceStatus::complete;
+    wo.native.message = r.message;
+    for (int i = 0; i < d; ++i)
+      for (int j = 0; j < d; ++j) wo.native.matrix.push_back(t.matrix()(i, j));
+    wo.native.offset.assign(t.offset().data(), t.offset().data() + d);
+    wo.native.function_evaluations = r.function_evaluations;
+    const auto t3 = Clock::now();
+    written = write_mesh(output, format, r.cells, wo);
+    write_s = seconds_since(t3);
+  };
   // --oracle local-pca: the per-simplex oracle, traced apart (one thread), with its defect count.
   std::optional<std::size_t> defects;
   MeshReport report;
@@ -230,6 +253,7 @@ void run(TraceCliOptions o) {
     report.trace_seconds = lp.trace_seconds;
     report.cell_complex_seconds = lp.cell_complex_seconds;
     report.topology_seconds = lp.topology_seconds;
+    if (write) write_file(report);
   } else {
     report = mesh_manifold(
         t,
@@ -238,35 +262,12 @@ void run(TraceCliOptions o) {
           auto [fw, dw] = make_problem();
           return {fw, dw};
         },
-        mo);
+        mo, write ? write_file : WhileTopology{});
   }
-  const CellComplex& cc = report.cells;
   const std::size_t automatic = cloud ? cloud->problem.seeds.size() : report.automatic_seeds;
   if (!o.json)
     for (const std::string& w : report.warnings) std::cerr << "coxmesh: warning: " << w << "\n";
 
-  WrittenCounts written;
-  double write_s = 0;
-  if (write) {
-    if (progress) progress->phase("writing " + output);
-    WriteOptions wo;
-    wo.projection = o.project;
-    wo.pole = pole;
-    wo.simplices = o.simplices;
-    wo.native.source = cloud ? "points " + o.points.file : from_text ? "function " + o.function : "preset " + o.preset;
-    for (const std::string& text : o.domains) wo.native.source += "; domain " + text;
-    if (o.domain_ball) wo.native.source += "; domain-ball " + std::to_string(*o.domain_ball);
-    if (!o.cut.empty()) wo.native.source += "; cut " + o.cut;
-    wo.native.complete = report.status == TraceStatus::complete;
-    wo.native.message = report.message;
-    for (int r = 0; r < d; ++r)
-      for (int c = 0; c < d; ++c) wo.native.matrix.push_back(t.matrix()(r, c));
-    wo.native.offset.assign(t.offset().data(), t.offset().data() + d);
-    wo.native.function_evaluations = report.function_evaluations;
-    const auto t3 = Clock::now();
-    written = write_mesh(output, format, cc, wo);
-    write_s = seconds_since(t3);
-  }
   if (progress) progress->clear();
 
   TraceSummary summary{name, d, report, cloud ? &*cloud : nullptr};

@@ -71,3 +71,29 @@ TEST(MeshManifold, SaysWhenZeroIsNotARegularValue) {
   EXPECT_FALSE(tangent.warnings.empty());
   EXPECT_THROW(mesh_manifold(t, maker(expression_function("x^2+y^2+z^2-1; 2*x^2+2*y^2+2*z^2-2")), options), InputError);
 }
+
+// Work done while the topology is computed (writing a file, in the command line) sees the final
+// mesh, and the report is the one computed without it, for one and for two threads.
+TEST(MeshManifold, WorkWhileTheTopologyIsComputed) {
+  const Triangulation t = Triangulation::coxeter(4).with_longest_edge(0.45);
+  const ManifoldMaker make = [] { return ManifoldFunctions{sphere(3, 4, 1.0), nullptr}; };
+  for (int threads : {1, 2}) {
+    SCOPED_TRACE(threads);
+    MeshOptions options;
+    options.trace.threads = threads;
+    const MeshReport plain = mesh_manifold(t, make, options);
+    std::size_t seen_cells = 0;
+    const MeshReport with = mesh_manifold(t, make, options, [&](const MeshReport& r) {
+      for (const CellLevel& level : r.cells.interior) seen_cells += level.size();
+    });
+    std::size_t cells = 0;
+    for (const CellLevel& level : plain.cells.interior) cells += level.size();
+    EXPECT_EQ(seen_cells, cells);
+    EXPECT_EQ(with.topology.betti, plain.topology.betti);
+    EXPECT_EQ(with.topology.betti, (std::vector<std::size_t>{1, 0, 0, 1}));
+    EXPECT_EQ(with.topology.is_manifold, plain.topology.is_manifold);
+    // An error in that work reaches the caller once the topology's thread has finished.
+    EXPECT_THROW(mesh_manifold(t, make, options, [](const MeshReport&) { throw InputError("cannot write"); }),
+                 InputError);
+  }
+}

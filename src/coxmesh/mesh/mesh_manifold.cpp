@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <exception>
+#include <thread>
 
 #include "coxmesh/oracle/implicit_oracle.h"
 #include "coxmesh/oracle/regularity.h"
@@ -17,7 +19,8 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 
 }  // namespace
 
-MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, const MeshOptions& o) {
+MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, const MeshOptions& o,
+                         const WhileTopology& while_topology) {
   const ManifoldFunctions first = make();
   const FunctionPtr& f = first.f;
   const int d = t.dimension();
@@ -91,11 +94,6 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
   const auto t1 = Clock::now();
   report.cells = build_cell_complex(std::move(traced), trace.threads);
   report.cell_complex_seconds = seconds_since(t1);
-  if (o.on_phase) o.on_phase("computing the topology");
-  const auto t2 = Clock::now();
-  report.topology = analyze_topology(report.cells);
-  report.topology_seconds = seconds_since(t2);
-
   // The exact rule meshes a perturbed level set where F = 0 is not a regular level: say so.
   const CellComplex& cc = report.cells;
   if (o.check_regularity && singular_on(f_only, {cc.vertices.data(), cc.vertices.size()}, h))
@@ -123,6 +121,36 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
           return {w.f, with_box(w.domain)};
         },
         ro);
+  }
+
+  auto topology = [&report] {
+    const auto t2 = Clock::now();
+    report.topology = analyze_topology(report.cells);
+    report.topology_seconds = seconds_since(t2);
+  };
+  if (o.on_phase) o.on_phase("computing the topology");
+  if (!while_topology) {
+    topology();
+  } else if (resolve_threads(trace.threads) == 1) {
+    topology();
+    while_topology(report);
+  } else {  // (both only read the mesh; the report's other fields are not written meanwhile)
+    std::exception_ptr failed;
+    std::thread worker([&] {
+      try {
+        topology();
+      } catch (...) {
+        failed = std::current_exception();
+      }
+    });
+    try {
+      while_topology(report);
+    } catch (...) {
+      worker.join();
+      throw;
+    }
+    worker.join();
+    if (failed) std::rethrow_exception(failed);
   }
   return report;
 }

@@ -40,6 +40,12 @@ struct MeshOptions {
   std::function<void(const std::string& phase)> on_phase;  ///< "building the cell complex", …
 };
 
+struct MeshReport;
+
+/// Work on the finished mesh that does not need its topology, e.g. writing it to a file: it gets
+/// the report with everything but `topology` and `topology_seconds` filled in.
+using WhileTopology = std::function<void(const MeshReport&)>;
+
 struct MeshReport {
   CellComplex cells;
   TopologyReport topology;
@@ -53,15 +59,20 @@ struct MeshReport {
 };
 
 /// Meshes M on the triangulation t: seeds (given, F's own, or searched in the box), the walk from
-/// them with options.trace.threads workers (F once per lattice vertex in all), the cell complex and
-/// its topology (none when the run was stopped by a limit: the complex is then open), and with
-/// options.refine the vertices moved onto M (refine_vertices; the domain includes the box when it
-/// bounds the walk).
+/// them with options.trace.threads workers (F once per lattice vertex in all), the cell complex,
+/// with options.refine the vertices moved onto M (refine_vertices; the domain includes the box when
+/// it bounds the walk), and the topology (none when the run was stopped by a limit: the complex is
+/// then open).
 ///   Throws InputError when no seed is found or none reaches M (saying whether F is not finite, or
 ///   its differential singular, there), SeedError, EvaluationError.
 ///
+/// `while_topology` runs on the calling thread once the mesh is final (refined), while the topology
+/// is computed on another thread when options.trace.threads is not 1 (both only read the mesh;
+/// the memory of both is then held at once), after it otherwise.
+///
 ///   MeshReport r = mesh_manifold(Triangulation::coxeter(3).with_longest_edge(0.1),
 ///                                [] { return ManifoldFunctions{sphere(2, 3, 1.0), nullptr}; }, {});
-MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, const MeshOptions& options);
+MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, const MeshOptions& options,
+                         const WhileTopology& while_topology = {});
 
 }  // namespace coxmesh
