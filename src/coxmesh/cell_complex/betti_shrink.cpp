@@ -29,7 +29,7 @@ class Reducer {
     const std::size_t n = cell_.size(), edges = c.start(1, false);
     for (std::size_t g = 0; g < n; ++g)
       if (g < edges || (g < c.start(2, false) && tree_edge[g - edges])) cell_[g].up = kRemoved;
-    for (int j = 1; j <= top; ++j)
+    for (int j = 2; j <= top; ++j)  // (the facets of edges, vertices, are all removed)
       for (std::size_t g = c.start(j, false); g < c.start(j + 1, false); ++g)
         if (!removed(g))
           c.for_each_facet(g, [&](std::size_t f) {
@@ -58,7 +58,7 @@ class Reducer {
   void remove(std::size_t g) {
     const int j = cells_.dimension(g);
     cell_[g].up = kRemoved;
-    if (j > 0)
+    if (j > 1)  // (no vertex remains)
       cells_.for_each_facet(g, [&](std::size_t f) {
         if (removed(f)) return;
         cell_[f].xup ^= relative(g, j);
