@@ -37,16 +37,20 @@ class Reducer {
             ++cell_[g].down, ++cell_[f].up;
             cell_[g].xdown ^= relative(f, j - 1), cell_[f].xup ^= relative(g, j);
           });
-    // The cofaces of each remaining cell, as CSR (the facets are the complex's own lists).
-    coface_start_.assign(n + 1, 0);
-    for (std::size_t g = 0; g < n; ++g) coface_start_[g + 1] = coface_start_[g] + (removed(g) ? 0 : cell_[g].up);
-    coface_ids_.resize(coface_start_[n]);
-    std::vector<std::uint64_t> next(coface_start_.begin(), coface_start_.end() - 1);
-    for (int j = 2; j <= top; ++j)
-      for (std::size_t g = c.start(j, false); g < c.start(j + 1, false); ++g)
+    // The cofaces of each remaining cell below the top, as CSR (the facets are the complex's own
+    // lists). Each range is filled from its end, the cells taken in reverse so that every list
+    // comes out in increasing order: no second array of positions.
+    const std::size_t below_top = c.start(top, false);
+    coface_start_.assign(below_top + 1, 0);
+    for (std::size_t g = 0; g < below_top; ++g)
+      coface_start_[g + 1] = coface_start_[g] + (removed(g) ? 0 : cell_[g].up);
+    coface_ids_.resize(coface_start_[below_top]);
+    for (std::size_t g = 0; g < below_top; ++g) coface_start_[g] = coface_start_[g + 1];
+    for (int j = top; j >= 2; --j)
+      for (std::size_t g = c.start(j + 1, false); g-- > c.start(j, false);)
         if (!removed(g))
           c.for_each_facet(g, [&](std::size_t f) {
-            if (!removed(f)) coface_ids_[next[f]++] = relative(g, j);
+            if (!removed(f)) coface_ids_[--coface_start_[f]] = relative(g, j);
           });
     for (std::size_t g = edges; g < n; ++g)
       if (!removed(g) && (cell_[g].up == 1 || cell_[g].down <= 1)) pending_.push_back(g);
@@ -172,10 +176,12 @@ std::vector<std::size_t> betti_numbers(const CellComplex& cc, bool manifold) {
   if (!manifold || m >= 3) {
     // Deletions start from one vertex per component, a 0-cycle that no chain bounds (removing it
     // lowers β_0 by one and changes nothing else), and spread along the spanning forest.
-    Reducer reducer(cells, top, top < m, tree_edge);
-    reducer.reduce();
     std::vector<std::uint8_t> keep(cells.count());
-    for (std::size_t g = 0; g < keep.size(); ++g) keep[g] = !reducer.removed(g);
+    {  // (its arrays go before the reduction's: they are the peak of the topology's memory)
+      Reducer reducer(cells, top, top < m, tree_edge);
+      reducer.reduce();
+      for (std::size_t g = 0; g < keep.size(); ++g) keep[g] = !reducer.removed(g);
+    }
     betti = betti_numbers_by_reduction(cc, keep);
   }
   betti[0] += components_count;
