@@ -181,8 +181,8 @@ class PackedKeyIndex {
   /// the inserts throw until reindex(). (A cell complex, once built, needs its keys only.)
   void release_index() {
     COXMESH_ASSERT(unindexed_.empty());
-    slots_ = {};
-    unindexed_ = {};
+    UninitializedHugeVector<std::uint64_t>().swap(slots_);  // (= {} would keep the capacity)
+    UninitializedHugeVector<std::uint64_t>().swap(unindexed_);
     probe_ = LinearProbe();
   }
   bool indexed() const { return !slots_.empty(); }
