@@ -13,6 +13,7 @@
 #include "coxmesh/mesh/mesh_manifold.h"
 #include "coxmesh/oracle/expression_function.h"
 #include "coxmesh/oracle/presets.h"
+#include "coxmesh/mesh/mesh_winding.h"
 #include "coxmesh/tracing/local_pca_oracle.h"
 #include "points.h"
 #include "progress.h"
@@ -75,7 +76,16 @@ void run(TraceCliOptions o) {
   if (from_points) {
     cloud = load_point_cloud(o.points, o.m_option->count() ? std::optional<int>(o.params.m) : std::nullopt,
                              o.params.dim, o.tri.edge_length, o.threads);
-    if (cloud->problem.diagnostics.frames_inconsistent && !o.quiet)
+    // auto: the winding oracle where the frames say the normal bundle is not orientable (and only
+    // the tube bounds the walk), which it meshes; the per-vertex function everywhere else.
+    const bool domains = !o.domains.empty() || o.domain_ball || !o.cut.empty() || !o.box.empty() || o.refine;
+    if (o.points.oracle == "auto") {
+      cloud->oracle = wants_winding_oracle(cloud->problem.diagnostics) && !domains ? "winding" : "vertex";
+      cloud->oracle_chosen = cloud->oracle == "winding";
+    } else {
+      cloud->oracle = o.points.oracle;
+    }
+    if (cloud->problem.diagnostics.frames_inconsistent && cloud->oracle != "winding" && !o.quiet)
       std::cerr << "coxmesh: warning: " << cloud->problem.diagnostics.warning << "\n";
   }
   if (!from_text && !cloud && !o.center.empty()) o.params.center = parse_point(o.center, "--center");
@@ -234,13 +244,35 @@ void run(TraceCliOptions o) {
     written = write_mesh(output, format, r.cells, wo);
     write_s = seconds_since(t3);
   };
-  // --oracle local-pca: the per-simplex oracle, traced apart (one thread), with its defect count.
+  // --oracle local-pca: the per-simplex oracle, traced apart (one thread), with its defect count;
+  // --oracle winding: the winding oracle's own pipeline.
   std::optional<std::size_t> defects;
+  std::optional<WindingMeshResult> winding;
   MeshReport report;
-  if (cloud && o.points.oracle == "local-pca") {
+  if (cloud && (cloud->oracle == "local-pca" || cloud->oracle == "winding")) {
     if (!o.domains.empty() || o.domain_ball || !o.cut.empty() || !o.box.empty())
-      throw InputError("--oracle local-pca takes no --domain, --domain-ball, --cut or --box (only the tube)");
-    if (o.refine) throw InputError("--refine needs the function F; --oracle local-pca has none");
+      throw InputError("--oracle " + cloud->oracle + " takes no --domain, --domain-ball, --cut or --box (only the tube)");
+    if (o.refine) throw InputError("--refine needs the function F; --oracle " + cloud->oracle + " has none");
+  }
+  if (cloud && cloud->oracle == "winding") {
+    winding = mesh_normal_winding(t, cloud->problem, mo.trace);
+    WindingMeshResult& w = *winding;
+    report.cells = std::move(w.cells);
+    report.topology = std::move(w.topology);
+    report.status = w.status;
+    report.message = w.message;
+    report.function_evaluations = w.function_evaluations;
+    report.oracle_calls = w.oracle_calls;
+    report.seeds = cloud->problem.seeds.size();
+    report.trace_seconds = w.trace_seconds + w.check_seconds;
+    report.cell_complex_seconds = w.cell_complex_seconds;
+    report.topology_seconds = w.topology_seconds;
+    if (w.odd_tetrahedra)
+      report.warnings.push_back(std::to_string(w.odd_tetrahedra) +
+                                " tetrahedra next to the trace see an odd number of hit triangles (where the normal "
+                                "planes of their vertices are far apart): the mesh is not closed there");
+    if (write) write_file(report);
+  } else if (cloud && cloud->oracle == "local-pca") {
     LocalPcaResult lp = mesh_local_pca(t, cloud->problem, mo.trace);
     defects = lp.defects;
     report.cells = std::move(lp.cells);
@@ -274,8 +306,8 @@ void run(TraceCliOptions o) {
   if (!cloud)
     summary.source = from_text ? std::pair<std::string, std::string>{"function", o.function}
                                : std::pair<std::string, std::string>{"preset", o.preset};
-  summary.point_cloud_oracle = o.points.oracle;
   summary.local_pca_defects = defects;
+  if (winding) summary.winding = TraceSummary::Winding{winding->odd_tetrahedra, winding->uncertain_triangles};
   summary.automatic_seeds = automatic;
   if (write) summary.output = TraceSummary::Output{output, format, written, write_s};
   // With -o - the mesh goes to standard output and the summary to standard error.

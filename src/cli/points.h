@@ -17,7 +17,9 @@ namespace coxmesh::cli {
 struct PointCloudCliOptions {
   std::string file;
   std::string function = "blended";
-  std::string oracle = "vertex";  // vertex (a function per lattice vertex) or local-pca (per simplex)
+  // auto (winding where the frames look non-orientable in codimension 2, else vertex), vertex (a
+  // function per lattice vertex), winding (normal_winding_oracle.h) or local-pca (per simplex)
+  std::string oracle = "auto";
   std::optional<double> neighbourhood, tube, blend_width;
   bool use_normals = false;
   CLI::Option* option = nullptr;  // --points itself (for excludes)
@@ -31,6 +33,13 @@ struct LoadedPointCloud {
   std::string format;
   double seconds = 0;  ///< reading and preparing (tree, frames, seeds)
   PointCloudProblem problem;
+  std::string oracle;  ///< the oracle used: vertex, winding or local-pca (--oracle auto resolved)
+  bool oracle_chosen = false;  ///< by --oracle auto
+
+  /// Why the oracle is the one used, for the summary.
+  std::string oracle_reason() const {
+    return oracle_chosen ? "chosen because the normal frames look non-orientable" : "requested";
+  }
 };
 
 /// Reads and prepares the samples. m: the manifold dimension (default d − 1); dim: the expected

@@ -33,4 +33,10 @@ struct WindingMeshResult {
 WindingMeshResult mesh_normal_winding(const Triangulation& t, const PointCloudProblem& p,
                                       const TraceOptions& options = {});
 
+/// Whether samples need the winding oracle: codimension 2 and frames that cannot be made consistent
+/// (PointCloudDiagnostics::frames_inconsistent), i.e. a normal bundle that looks non-orientable.
+inline bool wants_winding_oracle(const PointCloudDiagnostics& g) {
+  return g.frames_inconsistent && g.ambient_dimension - g.manifold_dimension == 2;
+}
+
 }  // namespace coxmesh
