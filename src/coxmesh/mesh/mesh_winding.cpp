@@ -1,5 +1,6 @@
 #include "coxmesh/mesh/mesh_winding.h"
 
+#include <atomic>
 #include <chrono>
 
 #include "coxmesh/tracing/local_pca_oracle.h"
@@ -22,9 +23,15 @@ WindingMeshResult mesh_normal_winding(const Triangulation& t, const PointCloudPr
   o.skip_unusable_seeds = true;
   WindingMeshResult r;
   const auto t0 = Clock::now();
+  std::atomic<std::uint64_t> uncertain{0};
   TraceResult traced = trace_manifold(
-      t, [&] { return std::make_unique<NormalWindingOracle>(t, p.model, g.blend_width, p.domain, shared); }, p.seeds,
-      o);
+      t,
+      [&] {
+        auto oracle = std::make_unique<NormalWindingOracle>(t, p.model, g.blend_width, p.domain, shared);
+        oracle->count_uncertain_in(&uncertain);
+        return oracle;
+      },
+      p.seeds, o);
   r.trace_seconds = seconds_since(t0);
   if (traced.simplices.size() == 0)
     throw InputError("no simplex near the " + std::to_string(p.seeds.size()) +
@@ -33,13 +40,18 @@ WindingMeshResult mesh_normal_winding(const Triangulation& t, const PointCloudPr
   r.message = traced.message;
   r.oracle_calls = traced.oracle_calls;
   r.function_evaluations = traced.function_evaluations;
-  // Each facet of each cofacet once, on one oracle: a count that does not depend on the threads.
-  const auto t1 = Clock::now();
-  NormalWindingOracle check(t, p.model, g.blend_width, p.domain, shared);
-  r.odd_tetrahedra = count_defects(traced, check);
-  r.uncertain_triangles = check.uncertain_triangles();
-  r.function_evaluations += check.function_evaluations();
-  r.check_seconds = seconds_since(t1);
+  // A complete walk has tested every facet of every cofacet of the trace. When none was uncertain,
+  // each of those tetrahedra has an even count (NormalWindingOracle::uncertain_triangles), and
+  // nothing needs checking. Otherwise each facet of each cofacet once, on one oracle: counts that
+  // do not depend on the threads.
+  if (uncertain.load() > 0 || traced.status != TraceStatus::complete) {
+    const auto t1 = Clock::now();
+    NormalWindingOracle check(t, p.model, g.blend_width, p.domain, shared);
+    r.odd_tetrahedra = count_defects(traced, check);
+    r.uncertain_triangles = check.uncertain_triangles();
+    r.function_evaluations += check.function_evaluations();
+    r.check_seconds = seconds_since(t1);
+  }
   const auto t2 = Clock::now();
   r.cells = build_cell_complex(std::move(traced));
   r.cell_complex_seconds = seconds_since(t2);

@@ -201,13 +201,18 @@ Intersection NormalWindingOracle::intersect(const Simplex& tau, double* point) {
   const EdgeTurn bc = edge_turn(data[o[1]], data[o[2]], d_);
   const EdgeTurn ac = edge_turn(data[o[0]], data[o[2]], d_);
   if (std::min({std::abs(ab.det), std::abs(bc.det), std::abs(ac.det)}) < kMinOverlap) {
-    ++uncertain_;
+    count_uncertain();
     return {};
   }
   const double turn = ab.angle + (ab.det > 0 ? bc.angle : -bc.angle) - ac.angle;
   constexpr double kTurn = 2 * std::numbers::pi;
   const double winding = std::round(turn / kTurn);
-  if (std::abs(turn - winding * kTurn) > kTurn / 4) ++uncertain_;
+  // Certain: the orientations agree around the triangle (ε_ab ε_bc = ε_ac) and the turns close up
+  // to within a quarter turn of a whole one. A tetrahedron whose four facets are certain has an
+  // even number of hit facets (the turns, referred to its first vertex, cancel on its boundary,
+  // and the four residuals sum to less than a turn).
+  if ((ab.det > 0) != ((bc.det > 0) == (ac.det > 0)) || std::abs(turn - winding * kTurn) >= kTurn / 4)
+    count_uncertain();
   if (winding == 0) return {};
 
   // The point: n's zero on τ with the three offsets in a's frame (the barycentric coordinates of 0

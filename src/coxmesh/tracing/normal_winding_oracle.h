@@ -9,6 +9,7 @@
 // planes of its vertices are within about 45° of each other): see docs/point_clouds.md.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 
@@ -38,10 +39,13 @@ class NormalWindingOracle final : public IntersectionOracle {
   bool has_domain() const override { return domain_ != nullptr; }
   Intersection intersect(const Simplex& tau, double* point) override;
   std::uint64_t function_evaluations() const override { return evaluations_; }
-  /// Triangles decided where the planes of their vertices are far apart (more than about 60°) or the
-  /// edge angles do not close up to a whole turn: there, the even count per tetrahedron is not
-  /// certain. 0 where the samples resolve the surface.
+  /// Triangles decided where the planes of their vertices are far apart (more than about 60°), their
+  /// orientations do not agree around the triangle, or the edge turns do not close up to within a
+  /// quarter turn of a whole one. Every tetrahedron whose four facets are none of these has an even
+  /// number of hit facets; 0 where the samples resolve the surface.
   std::uint64_t uncertain_triangles() const { return uncertain_; }
+  /// Also counts them in `total` (shared by the oracles of several threads; null: not).
+  void count_uncertain_in(std::atomic<std::uint64_t>* total) { total_uncertain_ = total; }
 
  private:
   void evaluate(const std::int32_t* v, double* out);
@@ -53,7 +57,13 @@ class NormalWindingOracle final : public IntersectionOracle {
   std::shared_ptr<SharedVertexValues> shared_;
   int d_, stride_;
   double inv_w2_, reach2_;
+  void count_uncertain() {
+    ++uncertain_;
+    if (total_uncertain_) total_uncertain_->fetch_add(1, std::memory_order_relaxed);
+  }
+
   std::uint64_t evaluations_ = 0, uncertain_ = 0;
+  std::atomic<std::uint64_t>* total_uncertain_ = nullptr;
 };
 
 }  // namespace coxmesh
