@@ -124,9 +124,12 @@ int main(int argc, char** argv) {
   int i = 1;
   for (; i < argc && argv[i][0] == '-'; ++i) {
     const std::string flag = argv[i];
-    if (flag == "--coxmesh-only") gudhi = false;
-    else if (flag == "--winding") winding = true;
-    else return std::cerr << "unknown option " << flag << "\n", 2;
+    if (flag == "--coxmesh-only")
+      gudhi = false;
+    else if (flag == "--winding")
+      winding = true;
+    else
+      return std::cerr << "unknown option " << flag << "\n", 2;
   }
   for (; i + 2 < argc; i += 3) cases.push_back({argv[i], std::stoul(argv[i + 1]), std::stod(argv[i + 2])});
   if (cases.empty())

@@ -11,10 +11,9 @@
 #include "coxmesh/io/atomic_file.h"
 #include "coxmesh/io/write_mesh.h"
 #include "coxmesh/mesh/mesh_manifold.h"
+#include "coxmesh/mesh/mesh_winding.h"
 #include "coxmesh/oracle/expression_function.h"
 #include "coxmesh/oracle/presets.h"
-#include "coxmesh/mesh/mesh_winding.h"
-#include "coxmesh/tracing/local_pca_oracle.h"
 #include "points.h"
 #include "progress.h"
 #include "report.h"
@@ -244,47 +243,15 @@ void run(TraceCliOptions o) {
     written = write_mesh(output, format, r.cells, wo);
     write_s = seconds_since(t3);
   };
-  // --oracle local-pca: the per-simplex oracle, traced apart (one thread), with its defect count;
-  // --oracle winding: the winding oracle's own pipeline.
-  std::optional<std::size_t> defects;
-  std::optional<WindingMeshResult> winding;
+  // --oracle local-pca and winding: their own pipelines (points.cpp).
+  SampleOracleCounts counts;
   MeshReport report;
   if (cloud && (cloud->oracle == "local-pca" || cloud->oracle == "winding")) {
     if (!o.domains.empty() || o.domain_ball || !o.cut.empty() || !o.box.empty())
-      throw InputError("--oracle " + cloud->oracle + " takes no --domain, --domain-ball, --cut or --box (only the tube)");
+      throw InputError("--oracle " + cloud->oracle +
+                       " takes no --domain, --domain-ball, --cut or --box (only the tube)");
     if (o.refine) throw InputError("--refine needs the function F; --oracle " + cloud->oracle + " has none");
-  }
-  if (cloud && cloud->oracle == "winding") {
-    winding = mesh_normal_winding(t, cloud->problem, mo.trace);
-    WindingMeshResult& w = *winding;
-    report.cells = std::move(w.cells);
-    report.topology = std::move(w.topology);
-    report.status = w.status;
-    report.message = w.message;
-    report.function_evaluations = w.function_evaluations;
-    report.oracle_calls = w.oracle_calls;
-    report.seeds = cloud->problem.seeds.size();
-    report.trace_seconds = w.trace_seconds + w.check_seconds;
-    report.cell_complex_seconds = w.cell_complex_seconds;
-    report.topology_seconds = w.topology_seconds;
-    if (w.odd_tetrahedra)
-      report.warnings.push_back(std::to_string(w.odd_tetrahedra) +
-                                " tetrahedra next to the trace see an odd number of hit triangles (where the normal "
-                                "planes of their vertices are far apart): the mesh is not closed there");
-    if (write) write_file(report);
-  } else if (cloud && cloud->oracle == "local-pca") {
-    LocalPcaResult lp = mesh_local_pca(t, cloud->problem, mo.trace);
-    defects = lp.defects;
-    report.cells = std::move(lp.cells);
-    report.topology = std::move(lp.topology);
-    report.status = lp.status;
-    report.message = lp.message;
-    report.function_evaluations = lp.function_evaluations;
-    report.oracle_calls = lp.oracle_calls;
-    report.seeds = cloud->problem.seeds.size();
-    report.trace_seconds = lp.trace_seconds;
-    report.cell_complex_seconds = lp.cell_complex_seconds;
-    report.topology_seconds = lp.topology_seconds;
+    report = mesh_with_sample_oracle(t, *cloud, mo.trace, counts);
     if (write) write_file(report);
   } else {
     report = mesh_manifold(
@@ -306,8 +273,7 @@ void run(TraceCliOptions o) {
   if (!cloud)
     summary.source = from_text ? std::pair<std::string, std::string>{"function", o.function}
                                : std::pair<std::string, std::string>{"preset", o.preset};
-  summary.local_pca_defects = defects;
-  if (winding) summary.winding = TraceSummary::Winding{winding->odd_tetrahedra, winding->uncertain_triangles};
+  summary.oracle_counts = counts;
   summary.automatic_seeds = automatic;
   if (write) summary.output = TraceSummary::Output{output, format, written, write_s};
   // With -o - the mesh goes to standard output and the summary to standard error.

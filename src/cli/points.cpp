@@ -4,6 +4,8 @@
 #include <chrono>
 
 #include "coxmesh/lattice/simplex.h"
+#include "coxmesh/mesh/mesh_winding.h"
+#include "coxmesh/tracing/local_pca_oracle.h"
 
 namespace coxmesh::cli {
 
@@ -58,6 +60,42 @@ LoadedPointCloud load_point_cloud(const PointCloudCliOptions& o, std::optional<i
   pc.problem = make_point_cloud_problem(std::move(set.points), d, mm, po);
   pc.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return pc;
+}
+
+MeshReport mesh_with_sample_oracle(const Triangulation& t, const LoadedPointCloud& pc, const TraceOptions& trace,
+                                   SampleOracleCounts& counts) {
+  MeshReport report;
+  const auto fill = [&](auto&& r) {
+    report.cells = std::move(r.cells);
+    report.topology = std::move(r.topology);
+    report.status = r.status;
+    report.message = r.message;
+    report.function_evaluations = r.function_evaluations;
+    report.oracle_calls = r.oracle_calls;
+    report.seeds = pc.problem.seeds.size();
+    report.trace_seconds = r.trace_seconds;
+    report.cell_complex_seconds = r.cell_complex_seconds;
+    report.topology_seconds = r.topology_seconds;
+  };
+  if (pc.oracle == "winding") {
+    WindingMeshResult w = mesh_normal_winding(t, pc.problem, trace);
+    counts.winding_odd_tetrahedra = w.odd_tetrahedra;
+    counts.winding_uncertain_triangles = w.uncertain_triangles;
+    w.trace_seconds += w.check_seconds;
+    fill(w);
+    if (w.odd_tetrahedra)
+      report.warnings.push_back(std::to_string(w.odd_tetrahedra) +
+                                " tetrahedra next to the trace see an odd number of hit triangles (where the normal "
+                                "planes of their vertices are far apart: too few samples?): the mesh is not closed "
+                                "there");
+  } else if (pc.oracle == "local-pca") {
+    LocalPcaResult lp = mesh_local_pca(t, pc.problem, trace);
+    counts.local_pca_defects = lp.defects;
+    fill(lp);
+  } else {
+    throw InputError("no oracle of its own named " + pc.oracle);
+  }
+  return report;
 }
 
 void print_point_cloud(std::ostream& os, const LoadedPointCloud& pc) {

@@ -1,7 +1,6 @@
 // The summary that `coxmesh trace` prints: one JSON object (--json) or the human lines.
 #pragma once
 
-#include <cstdint>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -23,12 +22,7 @@ struct TraceSummary {
   const MeshReport& report;
   const LoadedPointCloud* cloud;               ///< samples, if the manifold came from them
   std::pair<std::string, std::string> source;  ///< ("preset", name) or ("function", text); empty for samples
-  std::optional<std::size_t> local_pca_defects;
-  struct Winding {
-    std::size_t odd_tetrahedra;
-    std::uint64_t uncertain_triangles;
-  };
-  std::optional<Winding> winding;  ///< with the winding oracle
+  SampleOracleCounts oracle_counts;            ///< of --oracle local-pca or winding
   std::size_t automatic_seeds = 0;
   struct Output {
     std::string path;

@@ -15,7 +15,7 @@ namespace coxmesh {
 
 namespace {
 
-constexpr int kBlend = 32;                     // samples blended per vertex (as the blended function)
+constexpr int kBlend = 32;                         // samples blended per vertex (as the blended function)
 constexpr int kMaxStride = 2 * kMaxDimension + 3;  // two normal rows, n in them, the domain
 // |det| of the 2 × 2 overlap E_a E_bᵀ of two unit frames is the product of the cosines of the
 // planes' principal angles. Below 1/4 (both about 60°) the planes are not comparable: their
@@ -107,8 +107,8 @@ NormalWindingOracle::NormalWindingOracle(const Triangulation& triangulation, std
     throw InputError("the samples are in R^" + std::to_string(model_->frames.d) + " but the triangulation is of R^" +
                      std::to_string(d_));
   if (model_->frames.k != 2)
-    throw InputError("the winding oracle meshes manifolds of codimension 2 (here " +
-                     std::to_string(model_->frames.k) + ")");
+    throw InputError("the winding oracle meshes manifolds of codimension 2 (here " + std::to_string(model_->frames.k) +
+                     ")");
   if (domain_ && (domain_->ambient_dimension() != d_ || domain_->codimension() != 1))
     throw InputError("the domain function must map R^" + std::to_string(d_) + " to R");
   if (!(width >= 0) || !std::isfinite(width)) throw InputError("the blending width must not be negative");
@@ -236,7 +236,8 @@ Intersection NormalWindingOracle::intersect(const Simplex& tau, double* point) {
   t_.vertex_coordinates(tau, xs);
   for (int t = 0; t < d_; ++t) point[t] = lambda[0] * xs[t] + lambda[1] * xs[d_ + t] + lambda[2] * xs[2 * d_ + t];
   Intersection r{true, -1.0};
-  if (domain_) r.domain = lambda[0] * data[0][2 * d_ + 2] + lambda[1] * data[1][2 * d_ + 2] + lambda[2] * data[2][2 * d_ + 2];
+  if (domain_)
+    r.domain = lambda[0] * data[0][2 * d_ + 2] + lambda[1] * data[1][2 * d_ + 2] + lambda[2] * data[2][2 * d_ + 2];
   return r;
 }
 
