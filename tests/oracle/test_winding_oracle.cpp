@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,8 @@ struct Case {
   double noise;
   std::vector<std::size_t> betti;
 };
+
+void PrintTo(const Case& c, std::ostream* os) { *os << c.name << " (" << c.n << " samples, noise " << c.noise << ")"; }
 
 class NonOrientable : public ::testing::TestWithParam<Case> {};
 

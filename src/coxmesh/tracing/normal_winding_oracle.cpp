@@ -1,5 +1,5 @@
 // The winding oracle: per-vertex normal offsets and planes, triangles decided by winding numbers
-// summed from per-edge angles (docs/point_clouds.md, "Non-orientable surfaces").
+// summed from per-edge angles (docs/point_clouds.md, "The winding oracle").
 #include "coxmesh/tracing/normal_winding_oracle.h"
 
 #include <algorithm>

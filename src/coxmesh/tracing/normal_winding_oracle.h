@@ -4,9 +4,11 @@
 // with no orientation: a vector n(v) (the blended normal offset from the samples) and the normal
 // plane N(v) there. A triangle τ of the triangulation is hit when n turns once around 0 along τ's
 // boundary: the winding number, summed from one angle per edge (n's turn along the edge, measured
-// after projecting one end's plane onto the other's). Edge terms cancel on the boundary of every
-// tetrahedron, so each tetrahedron has an even number of hit facets whatever the data (when the
-// planes of its vertices are within about 45° of each other): see docs/point_clouds.md.
+// after projecting one end's offset onto the other's plane). Edge terms cancel on the boundary of
+// every tetrahedron, so each tetrahedron has an even number of hit facets whatever the data, as
+// long as its facets are certain (uncertain_triangles): see docs/point_clouds.md. No function can
+// do this, and neither can a sign or frame chosen per simplex (a flat bundle: normal Euler number
+// 0, while RP² ⊂ R⁴ has ±2, Massey 1969).
 #pragma once
 
 #include <atomic>
