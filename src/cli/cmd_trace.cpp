@@ -11,9 +11,9 @@
 #include "coxmesh/io/atomic_file.h"
 #include "coxmesh/io/write_mesh.h"
 #include "coxmesh/mesh/mesh_manifold.h"
+#include "coxmesh/mesh/mesh_winding.h"
 #include "coxmesh/oracle/expression_function.h"
 #include "coxmesh/oracle/presets.h"
-#include "coxmesh/tracing/local_pca_oracle.h"
 #include "points.h"
 #include "progress.h"
 #include "report.h"
@@ -75,7 +75,16 @@ void run(TraceCliOptions o) {
   if (from_points) {
     cloud = load_point_cloud(o.points, o.m_option->count() ? std::optional<int>(o.params.m) : std::nullopt,
                              o.params.dim, o.tri.edge_length, o.threads);
-    if (cloud->problem.diagnostics.frames_inconsistent && !o.quiet)
+    // auto: the winding oracle where the frames say the normal bundle is not orientable (and only
+    // the tube bounds the walk), which it meshes; the per-vertex function everywhere else.
+    const bool domains = !o.domains.empty() || o.domain_ball || !o.cut.empty() || !o.box.empty() || o.refine;
+    if (o.points.oracle == "auto") {
+      cloud->oracle = wants_winding_oracle(cloud->problem.diagnostics) && !domains ? "winding" : "vertex";
+      cloud->oracle_chosen = cloud->oracle == "winding";
+    } else {
+      cloud->oracle = o.points.oracle;
+    }
+    if (cloud->problem.diagnostics.frames_inconsistent && cloud->oracle != "winding" && !o.quiet)
       std::cerr << "coxmesh: warning: " << cloud->problem.diagnostics.warning << "\n";
   }
   if (!from_text && !cloud && !o.center.empty()) o.params.center = parse_point(o.center, "--center");
@@ -234,25 +243,15 @@ void run(TraceCliOptions o) {
     written = write_mesh(output, format, r.cells, wo);
     write_s = seconds_since(t3);
   };
-  // --oracle local-pca: the per-simplex oracle, traced apart (one thread), with its defect count.
-  std::optional<std::size_t> defects;
+  // --oracle local-pca and winding: their own pipelines (points.cpp).
+  SampleOracleCounts counts;
   MeshReport report;
-  if (cloud && o.points.oracle == "local-pca") {
+  if (cloud && (cloud->oracle == "local-pca" || cloud->oracle == "winding")) {
     if (!o.domains.empty() || o.domain_ball || !o.cut.empty() || !o.box.empty())
-      throw InputError("--oracle local-pca takes no --domain, --domain-ball, --cut or --box (only the tube)");
-    if (o.refine) throw InputError("--refine needs the function F; --oracle local-pca has none");
-    LocalPcaResult lp = mesh_local_pca(t, cloud->problem, mo.trace);
-    defects = lp.defects;
-    report.cells = std::move(lp.cells);
-    report.topology = std::move(lp.topology);
-    report.status = lp.status;
-    report.message = lp.message;
-    report.function_evaluations = lp.function_evaluations;
-    report.oracle_calls = lp.oracle_calls;
-    report.seeds = cloud->problem.seeds.size();
-    report.trace_seconds = lp.trace_seconds;
-    report.cell_complex_seconds = lp.cell_complex_seconds;
-    report.topology_seconds = lp.topology_seconds;
+      throw InputError("--oracle " + cloud->oracle +
+                       " takes no --domain, --domain-ball, --cut or --box (only the tube)");
+    if (o.refine) throw InputError("--refine needs the function F; --oracle " + cloud->oracle + " has none");
+    report = mesh_with_sample_oracle(t, *cloud, mo.trace, counts);
     if (write) write_file(report);
   } else {
     report = mesh_manifold(
@@ -274,8 +273,7 @@ void run(TraceCliOptions o) {
   if (!cloud)
     summary.source = from_text ? std::pair<std::string, std::string>{"function", o.function}
                                : std::pair<std::string, std::string>{"preset", o.preset};
-  summary.point_cloud_oracle = o.points.oracle;
-  summary.local_pca_defects = defects;
+  summary.oracle_counts = counts;
   summary.automatic_seeds = automatic;
   if (write) summary.output = TraceSummary::Output{output, format, written, write_s};
   // With -o - the mesh goes to standard output and the summary to standard error.

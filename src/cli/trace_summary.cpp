@@ -11,8 +11,14 @@ void print_trace_json(std::ostream& out, const TraceSummary& s) {
   nlohmann::json j = topology_json(report.cells, report.topology);
   if (s.cloud) {
     j["point_cloud"] = point_cloud_json(*s.cloud);
-    j["point_cloud"]["oracle"] = s.point_cloud_oracle;
-    if (s.local_pca_defects) j["point_cloud"]["local_pca_defects"] = *s.local_pca_defects;
+    j["point_cloud"]["oracle"] = s.cloud->oracle;
+    const SampleOracleCounts& c = s.oracle_counts;
+    if (c.local_pca_defects) j["point_cloud"]["local_pca_defects"] = *c.local_pca_defects;
+    if (c.winding_odd_tetrahedra) {
+      j["point_cloud"]["oracle_reason"] = s.cloud->oracle_reason();
+      j["point_cloud"]["winding_odd_tetrahedra"] = *c.winding_odd_tetrahedra;
+      j["point_cloud"]["winding_uncertain_triangles"] = c.winding_uncertain_triangles;
+    }
   } else {
     j[s.source.first] = s.source.second;
   }
@@ -50,8 +56,13 @@ void print_trace_lines(std::ostream& out, const TraceSummary& s) {
   const CellComplex& cc = report.cells;
   out << s.name << ": " << cc.manifold_dimension << "-manifold in R^" << s.ambient_dimension << "\n";
   if (s.cloud) print_point_cloud(out, *s.cloud);
-  if (s.local_pca_defects)
-    out << "  local-pca defects  " << *s.local_pca_defects
+  const SampleOracleCounts& c = s.oracle_counts;
+  if (c.winding_odd_tetrahedra)
+    out << "  oracle             winding (" << s.cloud->oracle_reason() << "): " << *c.winding_odd_tetrahedra
+        << " tetrahedra next to the trace see an odd number of hit triangles (0: a manifold), "
+        << c.winding_uncertain_triangles << " uncertain triangles\n";
+  if (c.local_pca_defects)
+    out << "  local-pca defects  " << *c.local_pca_defects
         << " cofacets of traced simplices see an odd number of intersected facets (0: a manifold)\n";
   print_topology(out, cc, report.topology);
   if (s.automatic_seeds)

@@ -22,8 +22,7 @@ struct TraceSummary {
   const MeshReport& report;
   const LoadedPointCloud* cloud;               ///< samples, if the manifold came from them
   std::pair<std::string, std::string> source;  ///< ("preset", name) or ("function", text); empty for samples
-  std::string point_cloud_oracle;              ///< --oracle, for samples
-  std::optional<std::size_t> local_pca_defects;
+  SampleOracleCounts oracle_counts;            ///< of --oracle local-pca or winding
   std::size_t automatic_seeds = 0;
   struct Output {
     std::string path;

@@ -41,11 +41,37 @@ check "points duplicates" "1" "$("$bin" trace --points dup.xyz --no-output | gre
 "$bin" trace --points sphere.xyz --threads 3 -o t3.ply --quiet
 check "points threads same file" "yes" "$(cmp -s t1.ply t3.ply && [[ -s t1.ply ]] && echo yes || echo no)"
 
-# RP^2 in R^4 is not orientable: a warning on stderr, and the JSON says so.
-err=$("$bin" trace --points rp2.txt --m 2 --no-output 2>&1 >/dev/null)
-check "rp2 warning" "1" "$(grep -c '^coxmesh: warning: .*frustrated\|^coxmesh: warning: .*cannot be trusted' <<<"$err")"
+# RP^2 and the Klein bottle in R^4 have non-orientable normal bundles: no per-vertex function
+# meshes them (--oracle vertex warns, on stderr and in the JSON); by default the winding oracle
+# does, with their Z/2 Betti numbers, clean and with a little noise, the same file for any --threads.
+err=$("$bin" trace --points rp2.txt --m 2 --oracle vertex --no-output 2>&1 >/dev/null)
+check "rp2 vertex warning" "1" "$(grep -c '^coxmesh: warning: .*frustrated\|^coxmesh: warning: .*cannot be trusted' <<<"$err")"
+json=$("$bin" trace --points rp2.txt --m 2 --oracle vertex --json 2>/dev/null | tr -d ' \n')
+check "rp2 vertex json" "1 1" "$(grep -c '"frames_consistent":false' <<<"$json") $(grep -c '"warning":' <<<"$json")"
+out=$("$bin" trace --points rp2.txt --m 2 --no-output 2>&1)
+check "rp2 winding" "1 1 1 0" "$(grep -c 'Betti numbers (Z/2) 1 1 1' <<<"$out") $(grep -c 'manifold check     passed' <<<"$out") \
+$(grep -c '^  oracle             winding (chosen because the normal frames look non-orientable): 0 tetrahedra' <<<"$out") \
+$(grep -c 'warning' <<<"$out")"
 json=$("$bin" trace --points rp2.txt --m 2 --json 2>/dev/null | tr -d ' \n')
-check "rp2 json" "1" "$(grep -c '"frames_consistent":false' <<<"$json")"
+check "rp2 winding json" "1 1 1 1 0" "$(grep -c '"betti":\[1,1,1\]' <<<"$json") $(grep -c '"euler_characteristic":1,' <<<"$json") \
+$(grep -c '"oracle":"winding","oracle_reason":"chosenbecause' <<<"$json") $(grep -c '"winding_odd_tetrahedra":0' <<<"$json") \
+$(grep -c '"warning":' <<<"$json")"
+awk 'BEGIN { n = 2500; pi = 3.14159265358979; g = (sqrt(5) - 1) / 2;
+  for (i = 0; i < n; i++) { u = 2 * pi * (i + 0.5) / n; v = 2 * pi * (i * g - int(i * g)); r = 1 + 0.4 * cos(v);
+    e = 0.005 * sin(12.9898 * i); f = 0.005 * cos(78.233 * i);
+    printf "%.12g %.12g %.12g %.12g\n", r * cos(u) + e, r * sin(u) + f, 0.4 * sin(v) * cos(u / 2) - e, 0.4 * sin(v) * sin(u / 2) + f } }' > klein.txt
+awk '{ printf "%.12g %.12g %.12g %.12g\n", $1 + 0.004 * sin(3.7 * NR), $2 + 0.004 * cos(5.3 * NR), $3 - 0.004 * sin(7.1 * NR), $4 + 0.004 * cos(2.9 * NR) }' rp2.txt > rp2-noisy.txt
+json=$("$bin" trace --points klein.txt --m 2 --json | tr -d ' \n')
+check "klein winding" "1 1 1" "$(grep -c '"betti":\[1,2,1\]' <<<"$json") $(grep -c '"is_manifold":true' <<<"$json") $(grep -c '"oracle":"winding"' <<<"$json")"
+json=$("$bin" trace --points rp2-noisy.txt --m 2 --json | tr -d ' \n')
+check "rp2 noisy winding" "1 1" "$(grep -c '"betti":\[1,1,1\]' <<<"$json") $(grep -c '"is_manifold":true' <<<"$json")"
+"$bin" trace --points rp2.txt --m 2 --threads 1 -o w1.cxm --quiet
+"$bin" trace --points rp2.txt --m 2 --threads 3 -o w3.cxm --quiet
+check "rp2 threads same file" "yes" "$(cmp -s w1.cxm w3.cxm && [[ -s w1.cxm ]] && echo yes || echo no)"
+json=$("$bin" trace --points klein.txt --m 2 --oracle winding --json | tr -d ' \n')
+check "klein requested winding" "1" "$(grep -c '"oracle":"winding","oracle_reason":"requested"' <<<"$json")"
+fails_with "winding codimension" "codimension 2" "$bin" trace --points sphere.xyz --oracle winding --no-output
+fails_with "winding domain" "takes no --domain" "$bin" trace --points rp2.txt --m 2 --oracle winding --cut 0,0,1,0,0 --no-output
 
 # Bad input: one line, non-zero exit.
 printf '0 0 0\n1 nan 0\n' > nan.xyz

@@ -1,0 +1,64 @@
+#include "coxmesh/mesh/mesh_winding.h"
+
+#include <atomic>
+#include <chrono>
+
+#include "coxmesh/tracing/local_pca_oracle.h"
+#include "coxmesh/tracing/normal_winding_oracle.h"
+
+namespace coxmesh {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+}  // namespace
+
+WindingMeshResult mesh_normal_winding(const Triangulation& t, const PointCloudProblem& p, const TraceOptions& options) {
+  const PointCloudDiagnostics& g = p.diagnostics;
+  if (g.ambient_dimension - g.manifold_dimension != 2)
+    throw InputError("the winding oracle meshes manifolds of codimension 2, not " +
+                     std::to_string(g.ambient_dimension - g.manifold_dimension));
+  auto shared = NormalWindingOracle::make_shared_values(t.dimension(), p.domain != nullptr);
+  TraceOptions o = options;
+  o.skip_unusable_seeds = true;
+  WindingMeshResult r;
+  const auto t0 = Clock::now();
+  std::atomic<std::uint64_t> uncertain{0};
+  TraceResult traced = trace_manifold(
+      t,
+      [&] {
+        auto oracle = std::make_unique<NormalWindingOracle>(t, p.model, g.blend_width, p.domain, shared);
+        oracle->count_uncertain_in(&uncertain);
+        return oracle;
+      },
+      p.seeds, o);
+  r.trace_seconds = seconds_since(t0);
+  if (traced.simplices.size() == 0)
+    throw InputError("no simplex near the " + std::to_string(p.seeds.size()) +
+                     " seeds meets the manifold: the triangulation is too coarse for it (give a smaller edge length)");
+  r.status = traced.status;
+  r.message = traced.message;
+  r.oracle_calls = traced.oracle_calls;
+  r.function_evaluations = traced.function_evaluations;
+  // A complete walk has tested every facet of every cofacet of the trace. When none was uncertain,
+  // each of those tetrahedra has an even count (NormalWindingOracle::uncertain_triangles), and
+  // nothing needs checking. Otherwise each facet of each cofacet once, on one oracle: counts that
+  // do not depend on the threads.
+  if (uncertain.load() > 0 || traced.status != TraceStatus::complete) {
+    const auto t1 = Clock::now();
+    NormalWindingOracle check(t, p.model, g.blend_width, p.domain, shared);
+    r.odd_tetrahedra = count_defects(traced, check);
+    r.uncertain_triangles = check.uncertain_triangles();
+    r.function_evaluations += check.function_evaluations();
+    r.check_seconds = seconds_since(t1);
+  }
+  const auto t2 = Clock::now();
+  r.cells = build_cell_complex(std::move(traced));
+  r.cell_complex_seconds = seconds_since(t2);
+  const auto t3 = Clock::now();
+  r.topology = analyze_topology(r.cells);
+  r.topology_seconds = seconds_since(t3);
+  return r;
+}
+
+}  // namespace coxmesh
