@@ -33,7 +33,7 @@ StratifiedOracle::StratifiedOracle(const Triangulation& triangulation, FunctionP
   vertices_ = PackedKeyIndex(d_);
 }
 
-const double* StratifiedOracle::values_at(const std::int32_t* v) {
+std::uint32_t StratifiedOracle::vertex_values(const std::int32_t* v) {
   const auto [id, fresh] = vertices_.insert(reinterpret_cast<const std::uint32_t*>(v));
   const std::size_t at = static_cast<std::size_t>(id) * stride_;
   if (fresh) {
@@ -55,7 +55,7 @@ const double* StratifiedOracle::values_at(const std::int32_t* v) {
         throw EvaluationError(os.str());
       }
   }
-  return values_.data() + at;
+  return id;
 }
 
 bool StratifiedOracle::meets(const Simplex& nu, std::uint64_t stratum, double* point) {
@@ -63,12 +63,14 @@ bool StratifiedOracle::meets(const Simplex& nu, std::uint64_t stratum, double* p
   const int s = std::popcount(stratum), p = domain_count();
   const int corners = nu.k + 1;
   COXMESH_ASSERT(nu.k == k_ + s && (p == kMaxDomains || stratum >> p == 0));
-  const double* val[kMaxDimension + 1];
+  std::uint32_t ids[kMaxDimension + 1];
   std::int32_t v[kMaxDimension];
   for (int j = 0; j < corners; ++j) {
     nu.vertex(j, v);
-    val[j] = values_at(v);
+    ids[j] = vertex_values(v);
   }
+  const double* val[kMaxDimension + 1];  // (after all insertions: the table may move while it grows)
+  for (int j = 0; j < corners; ++j) val[j] = values_.data() + static_cast<std::size_t>(ids[j]) * stride_;
   // Rows: 1, F, then the domains in order, each negated (D̂_l = −ε^{k+l} reads −D̂_l = ε^{k+l}).
   // A domain off the stratum with D < 0 at every vertex holds everywhere on ν (its slack is positive
   // whatever ε): left out. One with D ≥ 0 at every vertex excludes ν.

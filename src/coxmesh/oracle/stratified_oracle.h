@@ -46,7 +46,7 @@ class StratifiedOracle {
   std::uint64_t function_evaluations() const { return vertices_.size(); }
 
  private:
-  const double* values_at(const std::int32_t* v);  // F, then each D, at a lattice vertex
+  std::uint32_t vertex_values(const std::int32_t* v);  // evaluates F, then each D, once; the row id
 
   Triangulation triangulation_;
   FunctionPtr f_;
