@@ -1,5 +1,6 @@
-// Manifolds with corners (several domain functions): every stratum traced, exact counts of
-// corners and boundary strata, topology, the manifold-with-corners property, degenerate corners.
+// Manifolds with corners (several domain functions): every stratum traced; exact counts of corners
+// and boundary strata, χ and Z/2 Betti numbers, the manifold-with-corners property (also at
+// corners on lattice vertices), one result for any number of threads, bad input.
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -8,7 +9,7 @@
 #include "coxmesh/cell_complex/betti.h"
 #include "coxmesh/cell_complex/cell_complex.h"
 #include "coxmesh/cell_complex/topology.h"
-#include "coxmesh/lattice/faces.h"
+#include "coxmesh/mesh/mesh_manifold.h"
 #include "coxmesh/tracing/trace_strata.h"
 
 using namespace coxmesh;
@@ -24,7 +25,7 @@ struct Traced {
 
 Traced trace(const Triangulation& t, FunctionPtr f, std::vector<FunctionPtr> domains,
              std::vector<std::vector<double>> seeds) {
-  StratifiedOracle oracle(t, f, std::move(domains));
+  StratifiedOracle oracle(t, std::move(f), std::move(domains));
   StrataTraceResult r = trace_strata(t, oracle, seeds);
   EXPECT_EQ(r.status, TraceStatus::complete) << r.message;
   Traced out;
@@ -34,34 +35,201 @@ Traced trace(const Triangulation& t, FunctionPtr f, std::vector<FunctionPtr> dom
     out.strata[s.domains] = s.cells;
     if (s.domains != 0 && s.dimension == 0) out.corners += s.cells[0];
   }
+  EXPECT_TRUE(out.topology.is_manifold) << out.topology.manifold_problem;
   if (out.topology.closed) {
     EXPECT_EQ(out.topology.betti, betti_numbers_by_reduction(out.cc));
   }
   return out;
 }
 
+// χ of the (open) stratum: cells of even dimension minus cells of odd dimension.
+long long stratum_euler(const std::vector<std::size_t>& cells) {
+  long long chi = 0;
+  for (std::size_t j = 0; j < cells.size(); ++j) chi += (j % 2 ? -1LL : 1LL) * static_cast<long long>(cells[j]);
+  return chi;
+}
+
+// Number of strata of each dimension (the interior included).
+std::map<int, int> strata_by_dimension(const Traced& r) {
+  std::map<int, int> n;
+  for (const auto& [domains, cells] : r.strata) ++n[static_cast<int>(cells.size()) - 1];
+  return n;
+}
+
+// The link of every corner (a vertex cell on m domain boundaries) of a surface: one edge cell along
+// each of its two faces, and one 2-cell holding both (a corner of a polygon, not a fold or a fan).
+void expect_corner_links(const CellComplex& cc) {
+  ASSERT_EQ(cc.manifold_dimension, 2);
+  const CellLevel &v = cc.interior[0], &e = cc.interior[1], &f = cc.interior[2];
+  std::map<std::uint32_t, std::vector<std::uint32_t>> edges_at;  // corner → its edge cells
+  for (std::uint32_t c = 0; c < e.size(); ++c)
+    for (std::uint32_t x : e.facets(c))
+      if (std::popcount(v.domains[x]) == 2) edges_at[x].push_back(c);
+  std::size_t corners = 0;
+  for (std::uint32_t x = 0; x < v.size(); ++x) {
+    if (std::popcount(v.domains[x]) != 2) continue;
+    ++corners;
+    const std::vector<std::uint32_t>& at = edges_at[x];
+    ASSERT_EQ(at.size(), 2u) << "corner " << x;
+    EXPECT_EQ(e.domains[at[0]] | e.domains[at[1]], v.domains[x]);
+    EXPECT_EQ(std::popcount(e.domains[at[0]]), 1);
+    EXPECT_EQ(std::popcount(e.domains[at[1]]), 1);
+    int holding_both = 0;
+    for (std::uint32_t c = 0; c < f.size(); ++c) {
+      const auto facets = f.facets(c);
+      const bool a = std::find(facets.begin(), facets.end(), at[0]) != facets.end();
+      const bool b = std::find(facets.begin(), facets.end(), at[1]) != facets.end();
+      holding_both += a && b;
+    }
+    EXPECT_EQ(holding_both, 1) << "corner " << x;
+  }
+  EXPECT_GT(corners, 0u);
+}
+
 FunctionPtr half_space(std::vector<double> normal, double c) { return half_space_domain(std::move(normal), c); }
 
-TEST(Strata, DebugEdges) {
-  const Triangulation t = Triangulation::coxeter(3).with_longest_edge(0.2);
-  Traced r = trace(t, sphere(2, 3, 1.0), {half_space({-1, 0, 0}, -0.1), half_space({0, -1, 0}, -0.1)},
-                   {{0.7, 0.7, 0.1}});
-  const CellLevel& edges = r.cc.interior[1];
-  for (std::uint32_t e = 0; e < edges.size(); ++e)
-    if (edges.facets(e).size() != 2) {
-      std::cout << "edge " << unpack(edges.simplices.key(e), 3) << " domains " << edges.domains[e] << ":";
-      for (std::uint32_t v : edges.facets(e))
-        std::cout << " " << unpack(r.cc.interior[0].simplices.key(v), 3) << "/" << r.cc.interior[0].domains[v];
-      std::cout << "\n";
-      StratifiedOracle o(t, sphere(2, 3, 1.0), {half_space({-1, 0, 0}, -0.1), half_space({0, -1, 0}, -0.1)});
-      const Simplex mu = unpack(edges.simplices.key(e), 3);
-      double p[3];
-      for (int j = 0; j <= mu.k; ++j) std::cout << " facet " << j << ": " << o.meets(facet_without(mu, j), 0, p);
-      for (int l = 0; l < 2; ++l) std::cout << " domain " << l << ": " << o.meets(mu, 1u << l, p);
-      std::cout << "\n";
+// The octant x, y, z > 0 of the unit sphere: a disk bounded by three arcs meeting at three corners.
+TEST(Strata, SphereOctantHasThreeCornersAndThreeArcs) {
+  for (const Triangulation& t : {Triangulation::coxeter(3).with_longest_edge(0.15).rotated(3),
+                                 Triangulation::freudenthal(3).scaled(0.1)}) {  // corners on lattice vertices
+    const Traced r =
+        trace(t, sphere(2, 3, 1.0), {half_space({-1, 0, 0}, 0), half_space({0, -1, 0}, 0), half_space({0, 0, -1}, 0)},
+              {{0.577, 0.577, 0.577}});
+    EXPECT_EQ(r.corners, 3u);
+    EXPECT_EQ(r.strata.size(), 7u);  // interior, 3 arcs, 3 corners
+    EXPECT_EQ((strata_by_dimension(r)), (std::map<int, int>{{0, 3}, {1, 3}, {2, 1}}));
+    for (std::uint64_t face : {1u, 2u, 4u}) EXPECT_EQ(stratum_euler(r.strata.at(face)), -1) << face;  // open arcs
+    for (std::uint64_t corner : {3u, 5u, 6u}) EXPECT_EQ(r.strata.at(corner), std::vector<std::size_t>{1});
+    EXPECT_EQ(r.topology.euler_characteristic, 1);
+    EXPECT_EQ(r.topology.betti, (std::vector<std::size_t>{1, 0, 0}));
+    expect_corner_links(r.cc);
+  }
+}
+
+// Degenerate corners: the plane z = 0 cut by x < 0, y < 0 and the unit disk, on the unshifted
+// lattices: the corner (0, 0, 0) is a lattice vertex where F and two domain functions all vanish.
+TEST(Strata, CornersOnLatticeVerticesStillMakeAManifoldWithCorners) {
+  const FunctionPtr plane = make_function(3, 1, [](const double* x, double* v) { v[0] = x[2]; });
+  const FunctionPtr disk =
+      make_function(3, 1, [](const double* x, double* v) { v[0] = x[0] * x[0] + x[1] * x[1] - 1; });
+  for (const Triangulation& t :
+       {Triangulation::coxeter(3).with_longest_edge(0.1), Triangulation::freudenthal(3).scaled(0.125)}) {
+    const Traced r = trace(t, plane, {half_space({1, 0, 0}, 0), half_space({0, 1, 0}, 0), disk}, {{-0.5, -0.5, 0}});
+    EXPECT_EQ(r.corners, 3u);
+    EXPECT_EQ((strata_by_dimension(r)), (std::map<int, int>{{0, 3}, {1, 3}, {2, 1}}));
+    EXPECT_EQ(r.topology.euler_characteristic, 1);
+    EXPECT_EQ(r.topology.betti, (std::vector<std::size_t>{1, 0, 0}));
+    expect_corner_links(r.cc);
+  }
+}
+
+// The torus (R = 1, r = 0.4) cut by x < 0.3 and z < 0.1: the two planes meet on the line
+// x = 0.3, z = 0.1, which crosses the torus at 4 points, the corners.
+TEST(Strata, TorusCutByTwoPlanes) {
+  const Triangulation t = Triangulation::coxeter(3).with_longest_edge(0.08).rotated(5);
+  const Traced r = trace(t, torus(1.0, 0.4), {half_space({1, 0, 0}, 0.3), half_space({0, 0, 1}, 0.1)}, {{-1.4, 0, 0}});
+  EXPECT_EQ(r.corners, 4u);
+  EXPECT_EQ((strata_by_dimension(r)), (std::map<int, int>{{0, 1}, {1, 2}, {2, 1}}));
+  EXPECT_TRUE(r.topology.closed);
+  expect_corner_links(r.cc);
+  // x > 0 and y > 0 instead: the planes meet on the axis, off the torus. A quarter of the torus is
+  // an annulus: no corner, two circles (one per plane).
+  const Traced q = trace(t, torus(1.0, 0.4), {half_space({-1, 0, 0}, 0), half_space({0, -1, 0}, 0)}, {{0.99, 0.99, 0}});
+  EXPECT_EQ(q.corners, 0u);
+  EXPECT_EQ(q.strata.size(), 3u);
+  for (std::uint64_t face : {1u, 2u}) EXPECT_EQ(stratum_euler(q.strata.at(face)), 0) << face;  // circles
+  EXPECT_EQ(q.topology.euler_characteristic, 0);
+  EXPECT_EQ(q.topology.betti, (std::vector<std::size_t>{1, 1, 0}));
+}
+
+// A solid cube: the 3-plane w = 0 of R^4 cut by |x|, |y|, |z| < 1/2 (six domains): 8 corners,
+// 12 edges, 6 faces, a 3-ball.
+TEST(Strata, CubeIsABallWithEightCornersTwelveEdgesSixFaces) {
+  const FunctionPtr hyperplane = make_function(4, 1, [](const double* x, double* v) { v[0] = x[3]; });
+  std::vector<FunctionPtr> faces;
+  for (int i = 0; i < 3; ++i)
+    for (double s : {1.0, -1.0}) {
+      std::vector<double> n(4, 0.0);
+      n[i] = s;
+      faces.push_back(half_space(n, 0.5));
     }
-  std::cout << "vertex cells " << r.cc.interior[0].size() << "\n";
-  EXPECT_TRUE(r.topology.is_manifold) << r.topology.manifold_problem;
+  const Traced r =
+      trace(Triangulation::coxeter(4).with_longest_edge(0.2).rotated(1), hyperplane, faces, {{0, 0, 0, 0}});
+  EXPECT_EQ(r.corners, 8u);
+  EXPECT_EQ((strata_by_dimension(r)), (std::map<int, int>{{0, 8}, {1, 12}, {2, 6}, {3, 1}}));
+  for (const auto& [domains, cells] : r.strata)
+    EXPECT_EQ(stratum_euler(cells), static_cast<long long>(cells.size() % 2 ? 1 : -1)) << domains;  // open cells
+  EXPECT_EQ(r.topology.euler_characteristic, 1);
+  EXPECT_EQ(r.topology.betti, (std::vector<std::size_t>{1, 0, 0, 0}));
+}
+
+// S³ ⊂ R^4 cut by the box |x_i| < 0.55 (eight domains). The sphere lies outside the box along the
+// axes and inside it near the 16 diagonals (±1/2, …, ±1/2): 16 solid tetrahedra, one per seed,
+// each bounded by 4 faces. Corners: three coordinates ±0.55 and the fourth ±0.304, 4·8·2 = 64 of
+// them, on 32 sets of three domains; 24 pairs of domains meet in 4 arcs each; each of the 8
+// faces holds 8 triangles.
+TEST(Strata, ThreeSphereCutByABox) {
+  std::vector<FunctionPtr> faces;
+  for (int i = 0; i < 4; ++i)
+    for (double s : {1.0, -1.0}) {
+      std::vector<double> n(4, 0.0);
+      n[i] = s;
+      faces.push_back(half_space(n, 0.55));
+    }
+  std::vector<std::vector<double>> seeds;
+  for (int signs = 0; signs < 16; ++signs) {
+    seeds.emplace_back();
+    for (int i = 0; i < 4; ++i) seeds.back().push_back(signs >> i & 1 ? -0.5 : 0.5);
+  }
+  const Traced r = trace(Triangulation::coxeter(4).with_longest_edge(0.12).rotated(2), sphere(3, 4, 1.0), faces, seeds);
+  EXPECT_EQ(r.corners, 64u);
+  EXPECT_EQ((strata_by_dimension(r)), (std::map<int, int>{{0, 32}, {1, 24}, {2, 8}, {3, 1}}));
+  for (const auto& [domains, cells] : r.strata) {
+    const long long expected = cells.size() == 1 ? 2 : cells.size() == 2 ? -4 : cells.size() == 3 ? 8 : -16;
+    EXPECT_EQ(stratum_euler(cells), expected) << domains;  // 2 corners, 4 open arcs, 8 open triangles, 16 open balls
+  }
+  EXPECT_EQ(r.topology.euler_characteristic, 16);
+  EXPECT_EQ(r.topology.betti, (std::vector<std::size_t>{16, 0, 0, 0}));
+}
+
+// The whole pipeline gives the same complex for 1 and 2 threads, numbering included.
+TEST(Strata, SameResultForOneAndTwoThreads) {
+  const auto run = [](int threads) {
+    MeshOptions o;
+    o.seeds = {{0.577, 0.577, 0.577}};
+    o.trace.threads = threads;
+    return mesh_manifold(
+        Triangulation::coxeter(3).with_longest_edge(0.1),
+        [] {
+          return ManifoldFunctions{sphere(2, 3, 1.0),
+                                   nullptr,
+                                   {half_space({-1, 0, 0}, 0), half_space({0, -1, 0}, 0), half_space({0, 0, -1}, 0)}};
+        },
+        o);
+  };
+  const MeshReport one = run(1), two = run(2);
+  ASSERT_EQ(one.cells.interior.size(), two.cells.interior.size());
+  for (std::size_t j = 0; j < one.cells.interior.size(); ++j) {
+    const CellLevel &a = one.cells.interior[j], &b = two.cells.interior[j];
+    ASSERT_EQ(a.size(), b.size());
+    EXPECT_TRUE(
+        std::equal(a.simplices.key(0), a.simplices.key(0) + a.size() * a.simplices.words(), b.simplices.key(0)));
+    EXPECT_EQ(a.domains, b.domains);
+    EXPECT_EQ(a.facet_ids, b.facet_ids);
+  }
+  EXPECT_EQ(one.cells.vertices, two.cells.vertices);
+  EXPECT_EQ(one.topology.betti, two.topology.betti);
+}
+
+TEST(Strata, BadInput) {
+  const Triangulation t = Triangulation::coxeter(3);
+  EXPECT_THROW(StratifiedOracle(t, sphere(2, 3, 1.0), std::vector<FunctionPtr>(65, half_space({1, 0, 0}, 0))),
+               InputError);
+  EXPECT_THROW(StratifiedOracle(t, sphere(2, 3, 1.0), {half_space({1, 0}, 0)}), InputError);
+  EXPECT_THROW(StratifiedOracle(t, sphere(2, 3, 1.0), {nullptr}), InputError);
+  StratifiedOracle oracle(t.with_longest_edge(0.2), sphere(2, 3, 1.0),
+                          {half_space({1, 0, 0}, 0), half_space({0, 1, 0}, 0)});
+  EXPECT_THROW(trace_strata(t.with_longest_edge(0.2), oracle, {{5, 5, 5}}), SeedError);
 }
 
 }  // namespace
