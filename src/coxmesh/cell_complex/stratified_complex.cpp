@@ -62,7 +62,7 @@ CellComplex build_stratified_cell_complex(StrataTraceResult&& trace) {
   cc.vertices = std::move(trace.points);
   for (int j = 1; j <= m; ++j) cc.interior.push_back(next_stratified_level(cc.interior[j - 1], d));
   cc.boundary.resize(std::max(m, 0));
-  for (CellLevel& l : cc.boundary) l.simplices = PackedKeyIndex(packed_words(d));
+  for (CellLevel& l : cc.boundary) l.simplices = PackedKeyIndex(stratum_key_words(d));  // (one key width)
   return cc;
 }
 
