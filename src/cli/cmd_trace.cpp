@@ -155,6 +155,7 @@ void run(TraceCliOptions o) {
     early.projection = o.project;
     early.simplices = o.simplices;
     check_format(format, d, d - f->codimension(), early);
+    if (problem.domains.size() + (problem.domain ? 1 : 0) >= 2) check_stratified_format(format, d - f->codimension());
   } else if (o.simplices || !o.pole.empty()) {
     throw InputError(std::string(o.simplices ? "--simplices" : "--pole") +
                      " applies to the output file; there is none");

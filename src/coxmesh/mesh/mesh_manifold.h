@@ -21,6 +21,8 @@ namespace coxmesh {
 /// them (after `domain`, if any) bounds M with its own face: M ∩ {D_1 < 0, …, D_p < 0} is then a
 /// manifold with corners whose strata are traced one by one (trace_strata.h) when p ≥ 2.
 struct ManifoldFunctions {
+  ManifoldFunctions(FunctionPtr f_ = nullptr, FunctionPtr domain_ = nullptr, std::vector<FunctionPtr> domains_ = {})
+      : f(std::move(f_)), domain(std::move(domain_)), domains(std::move(domains_)) {}
   FunctionPtr f, domain;
   std::vector<FunctionPtr> domains;
 };
