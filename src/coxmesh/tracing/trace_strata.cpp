@@ -57,12 +57,15 @@ class StrataWalk {
     tested_.insert(key, h);
     return false;
   }
-  // The possible ends of the edge cell (J, μ), μ of dimension k + |J| + 1.
+  // The possible ends of the edge cell (J, μ), μ of dimension k + |J| + 1. The perturbation is
+  // generic, so the edge has 0 or 2 ends: the search stops at the second (the first being the
+  // vertex the walk came from, when the edge exists).
   void visit_edge(const Simplex& mu, std::uint64_t stratum) {
-    for (int j = 0; j <= mu.k; ++j) test(facet_without(mu, j), stratum);
+    int ends = 0;
+    for (int j = 0; j <= mu.k && ends < 2; ++j) ends += test(facet_without(mu, j), stratum);
     if (std::popcount(stratum) + 1 > m_) return;
-    for (int l = 0; l < p_; ++l)
-      if (!(stratum >> l & 1)) test(mu, stratum | std::uint64_t{1} << l);
+    for (int l = 0; l < p_ && ends < 2; ++l)
+      if (!(stratum >> l & 1)) ends += test(mu, stratum | std::uint64_t{1} << l);
   }
 
   const Triangulation& t_;
@@ -82,6 +85,7 @@ void StrataWalk::walk() {
       result_.status = TraceStatus::max_simplices_reached;
       return;
     }
+    if (options_.progress && head_ % options_.progress_interval == 0 && head_ > 0) options_.progress(head_);
     const std::uint32_t* key = result_.vertex_cells.key(head_);
     const Simplex nu = unpack(key, d_);
     const std::uint64_t stratum = stratum_of_key(key, d_);
