@@ -3,12 +3,17 @@
 // corners on lattice vertices), one result for any number of threads, bad input.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
+#include <cmath>
 #include <map>
+#include <set>
 
 #include "coxmesh/cell_complex/betti.h"
 #include "coxmesh/cell_complex/cell_complex.h"
 #include "coxmesh/cell_complex/topology.h"
+#include "coxmesh/lattice/cofaces.h"
+#include "coxmesh/lattice/faces.h"
 #include "coxmesh/mesh/mesh_manifold.h"
 #include "coxmesh/tracing/trace_strata.h"
 
@@ -190,6 +195,58 @@ TEST(Strata, ThreeSphereCutByABox) {
   }
   EXPECT_EQ(r.topology.euler_characteristic, 16);
   EXPECT_EQ(r.topology.betti, (std::vector<std::size_t>{16, 0, 0, 0}));
+}
+
+// Brute force: every (simplex, stratum) of the lattice around the octant of the sphere, each face of
+// every d-simplex within [−1.5, 1.5]³ with every set of domains of the right size, asked to a fresh
+// oracle: exactly the vertex cells the walk found.
+TEST(Strata, WalkFindsEveryVertexCellOfTheBruteForce) {
+  const Triangulation t = Triangulation::coxeter(3).with_longest_edge(0.3).rotated(7);
+  const FunctionPtr f = sphere(2, 3, 1.0);
+  const std::vector<FunctionPtr> domains = {half_space({-1, 0, 0}, 0), half_space({0, -1, 0}, 0),
+                                            half_space({0, 0, -1}, 0)};
+  StratifiedOracle walked(t, f, domains);
+  const StrataTraceResult r = trace_strata(t, walked, {{0.577, 0.577, 0.577}});
+  std::set<std::vector<std::uint32_t>> traced;
+  for (std::uint32_t c = 0; c < r.vertex_cells.size(); ++c)
+    traced.emplace(r.vertex_cells.key(c), r.vertex_cells.key(c) + stratum_key_words(3));
+
+  StratifiedOracle fresh(t, f, domains);
+  std::set<std::vector<std::uint32_t>> found;
+  PackedKeyIndex seen(packed_words(3));
+  std::vector<Simplex> queue;
+  const auto inside_box = [&](const Simplex& s) {
+    double xs[4 * 3];
+    t.vertex_coordinates(s, xs);
+    return std::all_of(xs, xs + 12, [](double x) { return std::abs(x) <= 1.5; });
+  };
+  CofaceEnumerator start(t.locate(std::vector<double>{0.1, 0.2, 0.3}), 3);
+  for (Simplex s; start.next(s);)
+    if (seen.insert(s).second) queue.push_back(s);
+  double point[3];
+  std::uint32_t key[stratum_key_words(3)];
+  for (std::size_t q = 0; q < queue.size(); ++q) {
+    const Simplex sigma = queue[q];
+    for (int dim = 1; dim <= 3; ++dim) {  // k = 1: strata of 0, 1, 2 domains
+      FaceEnumerator faces(sigma, dim);
+      for (Simplex nu; faces.next(nu);)
+        for (std::uint64_t stratum = 0; stratum < 8; ++stratum)
+          if (std::popcount(stratum) == dim - 1 && fresh.meets(nu, stratum, point)) {
+            pack_stratum_key(nu, stratum, key);
+            found.emplace(key, key + stratum_key_words(3));
+          }
+    }
+    FaceEnumerator facets(sigma, 2);
+    for (Simplex facet; facets.next(facet);) {
+      CofaceEnumerator across(facet, 3);
+      for (Simplex n; across.next(n);)
+        if (inside_box(n) && seen.insert(n).second) queue.push_back(n);
+    }
+  }
+  EXPECT_GT(queue.size(), 1000u);
+  EXPECT_GT(traced.size(), 50u);
+  EXPECT_EQ(found.size(), traced.size());
+  EXPECT_TRUE(found == traced);
 }
 
 // The whole pipeline gives the same complex for 1 and 2 threads, numbering included.
