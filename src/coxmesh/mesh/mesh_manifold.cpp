@@ -19,6 +19,10 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 MeshReport finish(MeshReport&& report, const MeshOptions& o, const WhileTopology& while_topology);
 
+constexpr const char* kSingularOnTracedSet =
+    "F's differential is (nearly) singular on the traced set: 0 is not a regular value of F (F is a square, F >= 0, "
+    "or its equations are dependent there); what was meshed is a perturbed level set near F = 0";
+
 // All domain functions as one (their intersection).
 FunctionPtr merged_domain(const ManifoldFunctions& w) {
   FunctionPtr merged = w.domain;
@@ -86,6 +90,10 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
     const auto t1 = Clock::now();
     report.cells = build_stratified_cell_complex(std::move(traced));
     report.cell_complex_seconds = seconds_since(t1);
+    const ImplicitFunction* f_only[] = {f.get()};
+    const PointArray& xs = report.cells.vertices;
+    if (o.check_regularity && singular_on(f_only, {xs.data(), xs.size()}, t.longest_edge()))
+      report.warnings.push_back(kSingularOnTracedSet);
     return finish(std::move(report), o, while_topology);
   }
   // Several workers share the vertex values (F once per vertex in all), each with its own functions.
@@ -131,10 +139,7 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
   // The exact rule meshes a perturbed level set where F = 0 is not a regular level: say so.
   const CellComplex& cc = report.cells;
   if (o.check_regularity && singular_on(f_only, {cc.vertices.data(), cc.vertices.size()}, h))
-    report.warnings.push_back(
-        "F's differential is (nearly) singular on the traced set: 0 is not a regular value of F (F is a square, F >= "
-        "0, "
-        "or its equations are dependent there); what was meshed is a perturbed level set near F = 0");
+    report.warnings.push_back(kSingularOnTracedSet);
   if (o.check_regularity && domain) {
     const ImplicitFunction* f_and_domain[] = {f.get(), domain.get()};
     if (singular_on(f_and_domain, {cc.boundary_vertices.data(), cc.boundary_vertices.size()}, h))
