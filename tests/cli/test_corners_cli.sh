@@ -44,6 +44,8 @@ check "one domain: interior and boundary strata" "0 [1, 1] 1 [1, 0, 0] True" \
 "$bin" "${octant[@]}" --json -o octant.cxm | strata > traced.txt
 check "cxm: check reads the strata back" "$(cat traced.txt)" "$("$bin" check octant.cxm --json | strata)"
 check "cxm: version 2" "2" "$(head -1 octant.cxm | "$py" -c 'import json, sys; print(json.load(sys.stdin)["version"])')"
+"$bin" convert octant.cxm again.cxm
+check "cxm: convert cxm -> cxm is byte-identical" "same" "$(cmp -s octant.cxm again.cxm && echo same || echo different)"
 "$bin" convert octant.cxm octant.vtu
 check "vtu: corners and boundary arcs with their domains" "3 [3, 5, 6] 3" "$("$py" -c '
 import vtk
