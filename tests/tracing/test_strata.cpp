@@ -28,14 +28,44 @@ struct Traced {
   std::size_t corners = 0;
 };
 
+// The same complex, numbering included (keys, bitmasks, facets, points).
+void expect_same_complex(const CellComplex& a, const CellComplex& b) {
+  ASSERT_EQ(a.interior.size(), b.interior.size());
+  for (std::size_t j = 0; j < a.interior.size(); ++j) {
+    const CellLevel &x = a.interior[j], &y = b.interior[j];
+    ASSERT_EQ(x.size(), y.size()) << j;
+    if (x.size() > 0) {
+      EXPECT_TRUE(
+          std::equal(x.simplices.key(0), x.simplices.key(0) + x.size() * x.simplices.words(), y.simplices.key(0)));
+    }
+    EXPECT_EQ(x.domains, y.domains) << j;
+    EXPECT_EQ(x.facet_ids, y.facet_ids) << j;
+  }
+  EXPECT_EQ(a.vertices, b.vertices);
+}
+
+// Through the whole pipeline, with 1 and 2 threads (the same result).
 Traced trace(const Triangulation& t, FunctionPtr f, std::vector<FunctionPtr> domains,
              std::vector<std::vector<double>> seeds) {
-  StratifiedOracle oracle(t, std::move(f), std::move(domains));
-  StrataTraceResult r = trace_strata(t, oracle, seeds);
-  EXPECT_EQ(r.status, TraceStatus::complete) << r.message;
+  const auto run = [&](int threads) {
+    MeshOptions o;
+    o.seeds = seeds;
+    o.trace.threads = threads;
+    return mesh_manifold(
+        t,
+        [&] {
+          return ManifoldFunctions{f, nullptr, domains};
+        },
+        o);
+  };
+  MeshReport one = run(1);
+  const MeshReport two = run(2);
+  EXPECT_EQ(one.status, TraceStatus::complete) << one.message;
+  expect_same_complex(one.cells, two.cells);
+  EXPECT_EQ(one.topology.betti, two.topology.betti);
   Traced out;
-  out.cc = build_stratified_cell_complex(std::move(r));
-  out.topology = analyze_topology(out.cc);
+  out.cc = std::move(one.cells);
+  out.topology = one.topology;
   for (const StratumCount& s : stratum_counts(out.cc)) {
     out.strata[s.domains] = s.cells;
     if (s.domains != 0 && s.dimension == 0) out.corners += s.cells[0];
@@ -247,35 +277,6 @@ TEST(Strata, WalkFindsEveryVertexCellOfTheBruteForce) {
   EXPECT_GT(traced.size(), 50u);
   EXPECT_EQ(found.size(), traced.size());
   EXPECT_TRUE(found == traced);
-}
-
-// The whole pipeline gives the same complex for 1 and 2 threads, numbering included.
-TEST(Strata, SameResultForOneAndTwoThreads) {
-  const auto run = [](int threads) {
-    MeshOptions o;
-    o.seeds = {{0.577, 0.577, 0.577}};
-    o.trace.threads = threads;
-    return mesh_manifold(
-        Triangulation::coxeter(3).with_longest_edge(0.1),
-        [] {
-          return ManifoldFunctions{sphere(2, 3, 1.0),
-                                   nullptr,
-                                   {half_space({-1, 0, 0}, 0), half_space({0, -1, 0}, 0), half_space({0, 0, -1}, 0)}};
-        },
-        o);
-  };
-  const MeshReport one = run(1), two = run(2);
-  ASSERT_EQ(one.cells.interior.size(), two.cells.interior.size());
-  for (std::size_t j = 0; j < one.cells.interior.size(); ++j) {
-    const CellLevel &a = one.cells.interior[j], &b = two.cells.interior[j];
-    ASSERT_EQ(a.size(), b.size());
-    EXPECT_TRUE(
-        std::equal(a.simplices.key(0), a.simplices.key(0) + a.size() * a.simplices.words(), b.simplices.key(0)));
-    EXPECT_EQ(a.domains, b.domains);
-    EXPECT_EQ(a.facet_ids, b.facet_ids);
-  }
-  EXPECT_EQ(one.cells.vertices, two.cells.vertices);
-  EXPECT_EQ(one.topology.betti, two.topology.betti);
 }
 
 TEST(Strata, BadInput) {
