@@ -85,7 +85,8 @@ void StrataWalk::walk() {
       result_.status = TraceStatus::max_simplices_reached;
       return;
     }
-    if (options_.progress && head_ % options_.progress_interval == 0 && head_ > 0) options_.progress(head_);
+    if (options_.progress && options_.progress_interval > 0 && head_ > 0 && head_ % options_.progress_interval == 0)
+      options_.progress(head_);
     const std::uint32_t* key = result_.vertex_cells.key(head_);
     const Simplex nu = unpack(key, d_);
     const std::uint64_t stratum = stratum_of_key(key, d_);
