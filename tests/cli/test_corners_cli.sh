@@ -6,9 +6,9 @@
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
 py=/usr/bin/python3
+corpus=$(cd "$(dirname "$0")/../../fuzz/corpus/cxm" && pwd)
 cd "$tmp"
 require_vtk
-corpus=$(dirname "$0")/../../fuzz/corpus/cxm
 
 # corners, the strata (domains: cells), χ, Betti numbers, the manifold check.
 strata() {
