@@ -17,13 +17,16 @@ CellLevel next_stratified_level(const CellLevel& prev, int d) {
   const int words = stratum_key_words(d);
   CellLevel level;
   level.simplices = PackedKeyIndex(words);
-  std::vector<std::vector<std::uint32_t>> facets;
+  // (cell, facet) pairs in the order found, facets increasing (prev in order): a counting sort by
+  // cell then gives the CSR lists sorted, with no list per cell. No pair comes twice: the cofaces
+  // of one simplex differ, and differ from it.
+  std::vector<std::uint32_t> cell_of, facet_of;
   std::uint32_t key[stratum_key_words(kMaxDimension)];
   const auto add = [&](const Simplex& nu, std::uint64_t stratum, std::uint32_t facet) {
     pack_stratum_key(nu, stratum, key);
     const auto [id, fresh] = level.simplices.insert(key);
-    if (fresh) facets.emplace_back(), level.domains.push_back(stratum);
-    facets[id].push_back(facet);
+    if (fresh) level.domains.push_back(stratum);
+    cell_of.push_back(id), facet_of.push_back(facet);
   };
   CofaceEnumerator cofaces;
   for (std::uint32_t c = 0; c < prev.size(); ++c) {
@@ -35,12 +38,12 @@ CellLevel next_stratified_level(const CellLevel& prev, int d) {
     }
     for (std::uint64_t rest = stratum; rest != 0; rest &= rest - 1) add(mu, stratum & ~(rest & (~rest + 1)), c);
   }
-  level.facet_offsets.assign(1, 0);
-  for (std::vector<std::uint32_t>& f : facets) {
-    std::sort(f.begin(), f.end());
-    level.facet_ids.insert(level.facet_ids.end(), f.begin(), f.end());
-    level.facet_offsets.push_back(static_cast<std::uint32_t>(level.facet_ids.size()));
-  }
+  level.facet_offsets.assign(level.size() + 1, 0);
+  for (std::uint32_t id : cell_of) ++level.facet_offsets[id + 1];
+  for (std::uint32_t c = 0; c < level.size(); ++c) level.facet_offsets[c + 1] += level.facet_offsets[c];
+  level.facet_ids.resize(cell_of.size());
+  std::vector<std::uint32_t> next(level.facet_offsets.begin(), level.facet_offsets.end() - 1);
+  for (std::size_t i = 0; i < cell_of.size(); ++i) level.facet_ids[next[cell_of[i]]++] = facet_of[i];
   return level;
 }
 
