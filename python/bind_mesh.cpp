@@ -35,6 +35,17 @@ const CellLevel& level(const Mesh& m, int j, bool boundary) {
   return levels[j];
 }
 
+// trace(refine=True)'s report, with the keys of `coxmesh trace --refine --json`.
+py::object refinement(const Mesh& m) {
+  if (!m.refinement) return py::none();
+  py::dict r;
+  r["max_abs_f_before"] = m.refinement->max_abs_f_before;
+  r["max_abs_f_after"] = m.refinement->max_abs_f_after;
+  r["vertices"] = m.refinement->vertices;
+  r["not_refined"] = m.refinement->not_refined;
+  return r;
+}
+
 py::dict summary(const Mesh& m) {
   // The library's topology keys (shared with the command line), then what this run adds.
   py::dict j = py::module_::import("json").attr("loads")(
@@ -48,6 +59,7 @@ py::dict summary(const Mesh& m) {
   j["complete"] = m.info.complete;
   if (!m.info.message.empty()) j["message"] = m.info.message;
   if (!m.warnings.empty()) j["warnings"] = m.warnings;
+  if (m.refinement) j["refinement"] = refinement(m);
   j["timings"] = m.timings;
   return j;
 }
@@ -153,6 +165,8 @@ The summary attributes carry the keys of `coxmesh trace --json`; summary() retur
       .def_property_readonly(
           "warnings", [](const Mesh& x) { return x.warnings; },
           "what the user should know to trust the result (e.g. 0 is not a regular value of F)")
+      .def_property_readonly("refinement", &refinement,
+                             "trace(refine=True): max_abs_f_before, max_abs_f_after, vertices, not_refined (else None)")
       .def_property_readonly(
           "source", [](const Mesh& x) { return x.info.source; }, "how the manifold was given")
       .def_property_readonly(

@@ -52,7 +52,7 @@ std::optional<int> dimension_shown(const py::object& dim, const py::object& seed
 struct TraceArguments {
   py::object function, preset, m, dim, radius, minor_radius, center, domain, seeds, box, edge_length, scale, matrix,
       offset, triangulation, progress;
-  bool auto_seed;
+  bool auto_seed, refine;
   int threads;
   std::size_t max_simplices;
 };
@@ -215,6 +215,7 @@ std::unique_ptr<Mesh> trace(const TraceArguments& a) {
     }
   };
   mo.trace.threads = python_code ? 1 : a.threads;
+  mo.refine = a.refine;
 
   {
     py::gil_scoped_release release;
@@ -232,12 +233,14 @@ std::unique_ptr<Mesh> trace(const TraceArguments& a) {
     mesh->automatic_seeds = r.automatic_seeds;
     mesh->oracle_calls = r.oracle_calls;
     mesh->warnings = std::move(r.warnings);
+    mesh->refinement = r.refinement;
     mesh->info.function_evaluations = r.function_evaluations;
     mesh->info.complete = r.status == TraceStatus::complete;
     mesh->info.message = r.message;
     mesh->timings = {{"trace_seconds", r.trace_seconds},
                      {"cell_complex_seconds", r.cell_complex_seconds},
                      {"topology_seconds", r.topology_seconds}};
+    if (r.refinement) mesh->timings["refine_seconds"] = r.refinement->seconds;
   }
   for (int r = 0; r < d; ++r)
     for (int c = 0; c < d; ++c) mesh->info.matrix.push_back(t->matrix()(r, c));
@@ -253,18 +256,18 @@ void bind_trace(py::module_& m) {
       [](py::object function, py::object preset, py::object m_, py::object dim, py::object radius,
          py::object minor_radius, py::object center, py::object domain, py::object seeds, bool auto_seed,
          py::object box, py::object edge_length, py::object scale, py::object matrix, py::object offset,
-         py::object triangulation, int threads, std::size_t max_simplices, py::object progress) {
-        return trace(TraceArguments{function, preset, m_, dim, radius, minor_radius, center, domain, seeds, box,
-                                    edge_length, scale, matrix, offset, triangulation, progress, auto_seed, threads,
-                                    max_simplices});
+         py::object triangulation, bool refine, int threads, std::size_t max_simplices, py::object progress) {
+        return trace(TraceArguments{function,      preset,   m_,        dim,         radius,  minor_radius, center,
+                                    domain,        seeds,    box,       edge_length, scale,   matrix,       offset,
+                                    triangulation, progress, auto_seed, refine,      threads, max_simplices});
       },
       py::kw_only(), py::arg("function") = py::none(), py::arg("preset") = py::none(), py::arg("m") = py::none(),
       py::arg("dim") = py::none(), py::arg("radius") = py::none(), py::arg("minor_radius") = py::none(),
       py::arg("center") = py::none(), py::arg("domain") = py::none(), py::arg("seeds") = py::none(),
       py::arg("auto_seed") = false, py::arg("box") = py::none(), py::arg("edge_length") = py::none(),
       py::arg("scale") = py::none(), py::arg("matrix") = py::none(), py::arg("offset") = py::none(),
-      py::arg("triangulation") = "coxeter", py::arg("threads") = 0, py::arg("max_simplices") = 20'000'000,
-      py::arg("progress") = false, R"doc(
+      py::arg("triangulation") = "coxeter", py::arg("refine") = false, py::arg("threads") = 0,
+      py::arg("max_simplices") = 20'000'000, py::arg("progress") = false, R"doc(
 Meshes a manifold: traces it through the ambient triangulation (thesis Ch. 4), builds its cell
 complex and its topology report. Keyword arguments only; the names follow `coxmesh trace`'s options.
 
@@ -298,6 +301,10 @@ The ambient triangulation:
   scale         multiply the linear part by this instead.
   matrix        a (d, d) matrix for the linear part (replaces triangulation and the default scale).
   offset        the translation b (d numbers).
+
+  refine        move every vertex onto M (and boundary vertices onto M ∩ {D = 0}) by a few
+                Gauss–Newton steps; the cells do not change. mesh.refinement tells max |F| before
+                and after, and how many vertices stayed where they were.
 
   threads       worker threads (0: all hardware threads); the result is the same for every number.
                 Python callables run on one thread.

@@ -3,12 +3,14 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "coxmesh/cell_complex/cell_complex.h"
 #include "coxmesh/cell_complex/topology.h"
 #include "coxmesh/io/native_format.h"
+#include "coxmesh/mesh/refine.h"
 
 namespace coxmesh::python {
 
@@ -19,8 +21,9 @@ struct Mesh {
   std::string preset, function;  // how the manifold was given (at most one is set)
   std::uint64_t oracle_calls = 0;
   std::size_t seeds = 0, automatic_seeds = 0;
-  std::map<std::string, double> timings;  // trace_seconds, cell_complex_seconds, topology_seconds
-  std::vector<std::string> warnings;      // one sentence each (mesh_manifold)
+  std::map<std::string, double> timings;       // trace_seconds, cell_complex_seconds, topology_seconds
+  std::vector<std::string> warnings;           // one sentence each (mesh_manifold)
+  std::optional<RefinementReport> refinement;  // trace(refine=True)
 };
 
 }  // namespace coxmesh::python

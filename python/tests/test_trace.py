@@ -198,3 +198,22 @@ def test_a_list_of_domains_makes_a_manifold_with_corners():
     assert sorted(m for m in masks if bin(m).count("1") == 2) == [3, 5, 6]
     assert len(mesh.domains(2)) > 0 and not mesh.domains(2).any()  # 2-cells are all interior
     assert len(coxmesh.trace(preset="sphere", domain=["-x"], edge_length=0.15).domains(0)) == 0
+
+
+def test_refine_moves_the_vertices_onto_the_manifold(cli):
+    plain = coxmesh.trace(preset="torus", edge_length=0.2)
+    refined = coxmesh.trace(preset="torus", edge_length=0.2, refine=True)
+    assert plain.refinement is None and "refinement" not in plain.summary()
+    r = refined.refinement
+    assert r["vertices"] == refined.traced_simplices and r["not_refined"] == 0
+    assert r["max_abs_f_after"] <= 1e-10 < r["max_abs_f_before"]
+    # The torus of radii 1 and 0.4 (the preset's): the distance to the core circle is 0.4.
+    def distance_error(mesh):
+        P = mesh.points
+        return np.abs(np.hypot(np.hypot(P[:, 0], P[:, 1]) - 1, P[:, 2]) - 0.4).max()
+    assert distance_error(refined) < 1e-9 < distance_error(plain) / 10
+    # Same cells and topology; the same report as the command line's.
+    assert refined.cells == plain.cells and refined.betti == plain.betti == [1, 2, 1]
+    j = cli("trace", "--preset", "torus", "--edge-length", "0.2", "--refine", "--json")
+    assert refined.summary()["refinement"] == j["refinement"]
+    assert "refine_seconds" in refined.timings

@@ -76,6 +76,32 @@ arrays += [cd.GetArrayName(i) for i in range(cd.GetNumberOfArrays())]
 print(g.GetNumberOfPoints(), g.GetNumberOfCells(), ",".join(map(str, types)), " ".join(arrays))
 PY
 }
+vtk_polyhedra() {  # polyhedra that VTK reads back as closed surfaces on their own points, and the others
+  "$py" - "$1" <<'PY'
+import sys, vtk
+r = vtk.vtkXMLUnstructuredGridReader()
+r.SetFileName(sys.argv[1])
+r.Update()
+g, stream, points = r.GetOutput(), vtk.vtkIdList(), vtk.vtkIdList()
+good = bad = 0
+for c in range(g.GetNumberOfCells()):
+    if g.GetCellType(c) != 42: continue
+    g.GetFaceStream(c, stream)
+    g.GetCellPoints(c, points)
+    s = [stream.GetId(i) for i in range(stream.GetNumberOfIds())]
+    own = {points.GetId(i) for i in range(points.GetNumberOfIds())}
+    k, edges, ok = 1, {}, True
+    for _ in range(s[0]):
+        face = s[k + 1:k + 1 + s[k]]
+        k += 1 + s[k]
+        ok &= set(face) <= own
+        for a, b in zip(face, face[1:] + face[:1]):
+            edges[min(a, b), max(a, b)] = edges.get((min(a, b), max(a, b)), 0) + 1
+    ok &= k == len(s) and all(n == 2 for n in edges.values())
+    good, bad = good + ok, bad + (not ok)
+print(good, bad)
+PY
+}
 file_counts() {  # points and elements of an OFF, PLY, OBJ or medit file, parsed independently
   "$py" - "$1" <<'PY'
 import struct, sys
@@ -148,10 +174,12 @@ check "vtu cap with boundary lines" \
   "$(vtk_counts cap.vtu)"
 "$bin" convert s3.cxm s3.vtu --project pca > /dev/null
 check "vtu S^3 polyhedra, R^4 coordinates kept" "$(c s3 'j["cells"][0]') $(c s3 'j["cells"][3]') 42 on_boundary:1 coordinates:4 dimension is_boundary domains" "$(vtk_counts s3.vtu)"
+check "vtu S^3: VTK reads every polyhedron as a closed surface" "$(c s3 'j["cells"][3]') 0" "$(vtk_polyhedra s3.vtu)"
 "$bin" convert ball.cxm ball.vtu > /dev/null
 check "vtu 3-ball: polyhedra and boundary polygons" \
   "$(c ball 'j["cells"][0] + j["boundary_cells"][0]') $(c ball 'j["cells"][3] + j["boundary_cells"][2]') 7,42 on_boundary:1 coordinates:4 dimension is_boundary domains" \
   "$(vtk_counts ball.vtu)"
+check "vtu 3-ball: VTK reads every polyhedron as a closed surface" "$(c ball 'j["cells"][3]') 0" "$(vtk_polyhedra ball.vtu)"
 "$bin" trace --preset sphere --m 4 --dim 5 --edge-length 0.9 --domain-ball 1 --domain-center 1,0,0,0,0 --json -o s4.vtu > s4.json
 check "vtu 4-manifold with boundary: the 3-skeleton" \
   "$(c s4 'j["cells"][0] + j["boundary_cells"][0]') $(c s4 'j["cells"][3] + j["boundary_cells"][3]') 42 on_boundary:1 coordinates:5 dimension is_boundary domains" \

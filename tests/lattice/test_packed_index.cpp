@@ -62,6 +62,32 @@ TEST(PackedKeyIndex, GrowthKeepsEveryKey) {
   }
 }
 
+// A released index keeps its keys and refuses look-ups (never a silent kAbsent) until reindexed.
+TEST(PackedKeyIndex, ReleasedIndexKeepsKeysAndRefusesLookUpsUntilReindexed) {
+  PackedKeyIndex index(2);
+  for (std::uint32_t i = 0; i < 5000; ++i) {
+    const std::uint32_t key[2] = {i * 7919u, i};
+    index.insert(key);
+  }
+  const std::size_t before = index.bytes();
+  index.release_index();
+  EXPECT_FALSE(index.indexed());
+  EXPECT_LT(index.bytes(), before);
+  ASSERT_EQ(index.size(), 5000u);
+  EXPECT_EQ(index.key(4321)[0], 4321u * 7919u);
+  const std::uint32_t probe[2] = {7919u, 1};
+  EXPECT_THROW(index.find(probe), std::logic_error);
+  EXPECT_THROW(index.insert(probe), std::logic_error);
+  index.reindex();
+  for (std::uint32_t i = 0; i < 5000; ++i) {
+    const std::uint32_t key[2] = {i * 7919u, i};
+    ASSERT_EQ(index.find(key), i);
+  }
+  const std::uint32_t absent[2] = {1, 1};
+  EXPECT_EQ(index.find(absent), PackedKeyIndex::kAbsent);
+  EXPECT_EQ(index.insert(absent), std::make_pair(5000u, true));
+}
+
 // Against one insert() after the other, from a table already holding some of the keys.
 TEST(PackedKeyIndex, InsertRunsGivesTheIdsOfSequentialInsertion) {
   std::mt19937_64 rng(12);

@@ -10,6 +10,8 @@
 
 #include <boost/multiprecision/cpp_int.hpp>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "coxmesh/oracle/double_word.h"
 #include "coxmesh/oracle/transversality.h"
@@ -47,6 +49,25 @@ bool reference(int n, const std::vector<double>& m, std::vector<double>& lambda)
   return true;
 }
 
+// lexicographic_solve on the n × n matrix m against the exact reference: the same answer and, for
+// a transverse simplex, the same barycentric coordinates within `tolerance` (non-negative, summing
+// to 1). Returns the answer.
+bool expect_agrees_with_reference(int n, const std::vector<double>& m, double tolerance, const std::string& what) {
+  std::vector<double> expected, got(n);
+  const bool ref = reference(n, m, expected);
+  EXPECT_EQ(lexicographic_solve(n, m.data(), got.data()), ref) << what;
+  if (ref) {
+    double sum = 0;
+    for (int j = 0; j < n; ++j) {
+      EXPECT_NEAR(got[j], expected[j], tolerance) << what;
+      EXPECT_GE(got[j], 0.0) << what;
+      sum += got[j];
+    }
+    EXPECT_NEAR(sum, 1.0, tolerance) << what;
+  }
+  return ref;
+}
+
 }  // namespace
 
 TEST(Transversality, AgreesWithExactReferenceOnDegenerateMatrices) {
@@ -65,19 +86,8 @@ TEST(Transversality, AgreesWithExactReferenceOnDegenerateMatrices) {
         const int c = static_cast<int>(rng() % n);
         for (int r = 1; r < n; ++r) m[c * n + r] = 0;
       }
-      std::vector<double> expected, got(n);
-      const bool ref = reference(n, m, expected);
-      ASSERT_EQ(lexicographic_solve(n, m.data(), got.data()), ref) << "n=" << n << " trial=" << trial;
-      if (ref) {
-        double sum = 0;
-        for (int j = 0; j < n; ++j) {
-          EXPECT_NEAR(got[j], expected[j], 1e-12);
-          EXPECT_GE(got[j], 0.0);
-          sum += got[j];
-        }
-        EXPECT_NEAR(sum, 1.0, 1e-12);
-      }
-      transverse += ref;
+      transverse +=
+          expect_agrees_with_reference(n, m, 1e-12, "n=" + std::to_string(n) + " trial=" + std::to_string(trial));
       ++total;
     }
   }
@@ -109,7 +119,7 @@ TEST(Transversality, EveryCofacetHasZeroOrTwoTransverseFacets) {
   }
 }
 
-TEST(Transversality, SpecExample) {
+TEST(Transversality, WorkedExampleOfTheThesis) {
   // Thesis §4.3: F = x² + y² − 1 on the segment (0,0)–(2,0): values −1, 3 → λ = (3/4, 1/4).
   const double m[] = {1, -1, 1, 3};
   double lambda[2];
@@ -147,13 +157,8 @@ TEST(Transversality, AgreesWithExactReferenceOnRoundingNoise) {
         const int c = static_cast<int>(rng() % n);
         for (int r = 1; r < n; ++r) m[c * n + r] = 0;
       }
-      std::vector<double> expected, got(n);
-      const bool ref = reference(n, m, expected);
-      ASSERT_EQ(lexicographic_solve(n, m.data(), got.data()), ref) << "n=" << n << " trial=" << trial;
-      if (ref) {
-        for (int j = 0; j < n; ++j) EXPECT_NEAR(got[j], expected[j], 1e-9);
-      }
-      transverse += ref;
+      transverse +=
+          expect_agrees_with_reference(n, m, 1e-9, "n=" + std::to_string(n) + " trial=" + std::to_string(trial));
       ++total;
     }
   }

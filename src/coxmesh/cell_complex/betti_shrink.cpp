@@ -5,6 +5,8 @@
 // algorithm", 2009) when b has no other remaining facet. Either is the elimination of the pivot
 // (a, b) of the boundary matrix, which over Z/2 changes no other entry, so homology is kept. What
 // remains need not be a subcomplex, only a chain complex: the boundary matrix restricted to it.
+#include <climits>
+
 #include "coxmesh/cell_complex/betti.h"
 #include "coxmesh/cell_complex/global_cells.h"
 #include "coxmesh/util/union_find.h"
@@ -23,54 +25,67 @@ class Reducer {
   // vertex graph (tree_edge, per edge) removed first: that is the coreduction of each tree from a
   // vertex whose class is known (β_0 counts it) outwards, one edge and the vertex at its far end
   // at a time, done in one pass. `top_is_cut`: the complex has cells above top, and the homology
-  // of dimension top is not wanted (only the lower ones).
+  // of dimension top is not wanted (only the lower ones). Cells are kept from the first edge on,
+  // with 32-bit ids relative to it (the caller checks that they fit).
   Reducer(const GlobalCells& c, int top, bool top_is_cut, const std::vector<std::uint8_t>& tree_edge)
-      : cells_(c), top_(top), top_is_cut_(top_is_cut), cell_(c.start(top + 1, false), Counts{}) {
-    const std::size_t n = cell_.size(), edges = c.start(1, false);
-    for (std::size_t g = 0; g < n; ++g)
-      if (g < edges || (g < c.start(2, false) && tree_edge[g - edges])) cell_[g].up = kRemoved;
-    for (int j = 1; j <= top; ++j)
+      : cells_(c),
+        top_(top),
+        top_is_cut_(top_is_cut),
+        base_(c.start(1, false)),
+        cell_(c.start(top + 1, false) - base_, Counts{}) {
+    const std::size_t end = c.start(top + 1, false);
+    for (std::size_t g = base_; g < c.start(2, false) && g < end; ++g)
+      if (tree_edge[g - base_]) at(g).up = kRemoved;
+    for (int j = 2; j <= top; ++j)  // (the facets of edges, vertices, are all removed)
       for (std::size_t g = c.start(j, false); g < c.start(j + 1, false); ++g)
         if (!removed(g))
           c.for_each_facet(g, [&](std::size_t f) {
             if (removed(f)) return;
-            ++cell_[g].down, ++cell_[f].up;
-            cell_[g].xdown ^= relative(f, j - 1), cell_[f].xup ^= relative(g, j);
+            ++at(g).down, ++at(f).up;
+            at(g).xdown ^= relative(f, j - 1), at(f).xup ^= relative(g, j);
           });
-    // The cofaces of each remaining cell, as CSR (the facets are the complex's own lists).
-    coface_start_.assign(n + 1, 0);
-    for (std::size_t g = 0; g < n; ++g) coface_start_[g + 1] = coface_start_[g] + (removed(g) ? 0 : cell_[g].up);
-    coface_ids_.resize(coface_start_[n]);
-    std::vector<std::uint64_t> next(coface_start_.begin(), coface_start_.end() - 1);
-    for (int j = 2; j <= top; ++j)
-      for (std::size_t g = c.start(j, false); g < c.start(j + 1, false); ++g)
+    // The cofaces of each remaining cell below the top, as CSR (the facets are the complex's own
+    // lists). Each range is filled from its end, the cells taken in reverse so that every list
+    // comes out in increasing order: no second array of positions.
+    const std::size_t below_top = std::max(c.start(top, false), base_) - base_;
+    std::uint64_t total = 0;
+    coface_start_.assign(below_top + 1, 0);
+    for (std::size_t i = 0; i < below_top; ++i) {
+      total += removed(base_ + i) ? 0 : cell_[i].up;
+      if (total > UINT32_MAX) throw InputError("the complex has too many incidences (2^32) for its topology");
+      coface_start_[i + 1] = static_cast<std::uint32_t>(total);
+    }
+    coface_ids_.resize(total);
+    for (std::size_t i = 0; i < below_top; ++i) coface_start_[i] = coface_start_[i + 1];
+    for (int j = top; j >= 2; --j)
+      for (std::size_t g = c.start(j + 1, false); g-- > c.start(j, false);)
         if (!removed(g))
           c.for_each_facet(g, [&](std::size_t f) {
-            if (!removed(f)) coface_ids_[next[f]++] = relative(g, j);
+            if (!removed(f)) coface_ids_[--coface_start_[f - base_]] = relative(g, j);
           });
-    for (std::size_t g = edges; g < n; ++g)
-      if (!removed(g) && (cell_[g].up == 1 || cell_[g].down <= 1)) pending_.push_back(g);
+    for (std::size_t g = base_; g < end; ++g)
+      if (!removed(g) && (at(g).up == 1 || at(g).down <= 1)) pending_.push_back(static_cast<std::uint32_t>(g - base_));
   }
 
-  bool removed(std::size_t g) const { return g >= cell_.size() || cell_[g].up == kRemoved; }
+  bool removed(std::size_t g) const { return g < base_ || g - base_ >= cell_.size() || at(g).up == kRemoved; }
 
   // Removes cell g (a cell whose homology class is known, or one of a pair).
   void remove(std::size_t g) {
     const int j = cells_.dimension(g);
-    cell_[g].up = kRemoved;
-    if (j > 0)
+    at(g).up = kRemoved;
+    if (j > 1)  // (no vertex remains)
       cells_.for_each_facet(g, [&](std::size_t f) {
         if (removed(f)) return;
-        cell_[f].xup ^= relative(g, j);
-        if (--cell_[f].up == 1) pending_.push_back(f);
+        at(f).xup ^= relative(g, j);
+        if (--at(f).up == 1) pending_.push_back(static_cast<std::uint32_t>(f - base_));
       });
     if (j < top_) {
       const std::size_t first = cells_.start(j + 1, false);
-      for (std::uint64_t i = coface_start_[g]; i < coface_start_[g + 1]; ++i) {
+      for (std::uint32_t i = coface_start_[g - base_]; i < coface_start_[g - base_ + 1]; ++i) {
         const std::size_t c = first + coface_ids_[i];
         if (removed(c)) continue;
-        cell_[c].xdown ^= relative(g, j);
-        if (--cell_[c].down <= 1) pending_.push_back(c);  // (0: a cycle at the top, see reduce())
+        at(c).xdown ^= relative(g, j);
+        if (--at(c).down <= 1) pending_.push_back(static_cast<std::uint32_t>(c - base_));  // (0: see reduce())
       }
     }
   }
@@ -82,15 +97,15 @@ class Reducer {
         pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(head));
         head = 0;
       }
-      const std::size_t a = pending_[head];
+      const std::size_t a = base_ + pending_[head];
       if (removed(a)) continue;
       const int j = cells_.dimension(a);
       std::size_t b;
-      if (cell_[a].down == 1)  // (coreductions first: collapses alone stall on 3-manifolds)
-        b = cells_.start(j - 1, false) + cell_[a].xdown;
-      else if (cell_[a].up == 1)
-        b = cells_.start(j + 1, false) + cell_[a].xup;
-      else if (j == top_ && cell_[a].down == 0 && top_is_cut_) {
+      if (at(a).down == 1)  // (coreductions first: collapses alone stall on 3-manifolds)
+        b = cells_.start(j - 1, false) + at(a).xdown;
+      else if (at(a).up == 1)
+        b = cells_.start(j + 1, false) + at(a).xup;
+      else if (j == top_ && at(a).down == 0 && top_is_cut_) {
         // A cycle of the top dimension of a truncated skeleton: removing it changes only the
         // skeleton's own H_top, which is not wanted.
         remove(a);
@@ -104,18 +119,21 @@ class Reducer {
 
  private:
   std::uint32_t relative(std::size_t g, int j) const { return static_cast<std::uint32_t>(g - cells_.start(j, false)); }
+  struct Counts {
+    std::uint32_t down = 0, up = 0, xdown = 0, xup = 0;
+  };
+  Counts& at(std::size_t g) { return cell_[g - base_]; }
+  const Counts& at(std::size_t g) const { return cell_[g - base_]; }
 
   const GlobalCells& cells_;
   int top_;
   bool top_is_cut_;
-  struct Counts {
-    std::uint32_t down = 0, up = 0, xdown = 0, xup = 0;
-  };
+  std::size_t base_;  // the first edge: vertices are all removed
   static constexpr std::size_t kCompactAt = 1 << 16;
   std::vector<Counts> cell_;  // (one cache line holds all four)
-  std::vector<std::uint64_t> coface_start_;
+  std::vector<std::uint32_t> coface_start_;
   std::vector<std::uint32_t> coface_ids_;  // relative to the first cell of the dimension above
-  std::vector<std::size_t> pending_;       // FIFO of cells whose count became 1 (the order matters:
+  std::vector<std::uint32_t> pending_;     // FIFO of cells whose count became 1 (the order matters:
                                            // first in, first out leaves far fewer cells than a stack)
 };
 
@@ -176,10 +194,13 @@ std::vector<std::size_t> betti_numbers(const CellComplex& cc, bool manifold) {
   if (!manifold || m >= 3) {
     // Deletions start from one vertex per component, a 0-cycle that no chain bounds (removing it
     // lowers β_0 by one and changes nothing else), and spread along the spanning forest.
-    Reducer reducer(cells, top, top < m, tree_edge);
-    reducer.reduce();
+    if (cells.count() > UINT32_MAX) throw InputError("the complex has too many cells (2^32) for its topology");
     std::vector<std::uint8_t> keep(cells.count());
-    for (std::size_t g = 0; g < keep.size(); ++g) keep[g] = !reducer.removed(g);
+    {  // (its arrays go before the reduction's: they are the peak of the topology's memory)
+      Reducer reducer(cells, top, top < m, tree_edge);
+      reducer.reduce();
+      for (std::size_t g = 0; g < keep.size(); ++g) keep[g] = !reducer.removed(g);
+    }
     betti = betti_numbers_by_reduction(cc, keep);
   }
   betti[0] += components_count;

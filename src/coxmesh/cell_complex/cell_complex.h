@@ -16,7 +16,9 @@ namespace coxmesh {
 struct CellLevel {
   static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
   // (arrays that the construction writes in full, by several threads: not zeroed first)
-  PackedKeyIndex simplices{1};  ///< ambient simplex of each cell; id = cell id
+  /// Ambient simplex of each cell; id = cell id. build_cell_complex keeps the keys and releases
+  /// the hash table: reindex() before find().
+  PackedKeyIndex simplices{1};
   IndexArray facet_offsets{0};  ///< CSR: facets of c are facet_ids[offsets[c] .. offsets[c+1])
   IndexArray facet_ids;         ///< cells of dimension j − 1 of the same kind
   /// Interior cells (j ≥ 1) with a domain: the boundary cell of dimension j − 1 on the same

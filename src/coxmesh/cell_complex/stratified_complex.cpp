@@ -66,6 +66,8 @@ CellComplex build_stratified_cell_complex(StrataTraceResult&& trace) {
   for (int j = 1; j <= m; ++j) cc.interior.push_back(next_stratified_level(cc.interior[j - 1], d));
   cc.boundary.resize(std::max(m, 0));
   for (CellLevel& l : cc.boundary) l.simplices = PackedKeyIndex(stratum_key_words(d));  // (one key width)
+  for (auto* levels : {&cc.interior, &cc.boundary})  // (as build_cell_complex: the keys stay, the tables go)
+    for (CellLevel& l : *levels) l.simplices.release_index();
   return cc;
 }
 

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <climits>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -18,16 +19,18 @@ namespace {
 
 constexpr std::uint8_t kVertex = 1, kLine = 3, kTriangle = 5, kPolygon = 7, kTetrahedron = 10, kPolyhedron = 42;
 
-// The cells of the grid, built up cell by cell.
+// The cells of the grid, built up cell by cell; Index is the type of the connectivity, offsets and
+// faces arrays (Int32 where every number fits: half the bytes to build, copy and store).
+template <class Index>
 struct Grid {
-  std::vector<std::int64_t> connectivity, offsets, faces, faceoffsets;
+  std::vector<Index> connectivity, offsets, faces, faceoffsets;
   std::vector<std::uint8_t> types, dimension, is_boundary;
   std::vector<std::uint64_t> domains;  // bit i: the cell lies on D_{i+1} = 0 (a boundary cell of one domain: 1)
   bool has_polyhedra = false;
 
   void add(std::uint8_t type, int dim, std::uint64_t on_domains, std::span<const std::uint32_t> points) {
     connectivity.insert(connectivity.end(), points.begin(), points.end());
-    offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
+    offsets.push_back(static_cast<Index>(connectivity.size()));
     types.push_back(type);
     dimension.push_back(static_cast<std::uint8_t>(dim));
     is_boundary.push_back(on_domains != 0 ? 1 : 0);
@@ -56,8 +59,10 @@ std::array<double, 3> vec(const double* p3, std::uint32_t v) { return {p3[3 * v]
 
 // Adds a 3-cell as a VTK polyhedron with faces turned outwards (Newell normal against the
 // direction from the cell's centroid to the face's centroid). points, cycle: scratch space.
-void add_polyhedron(Grid& g, std::uint64_t domains, std::span<const std::uint32_t> face_ids, const Ragged& polygons,
-                    const double* p3, std::vector<std::uint32_t>& points, std::vector<std::uint32_t>& cycle) {
+template <class Index>
+void add_polyhedron(Grid<Index>& g, std::uint64_t domains, std::span<const std::uint32_t> face_ids,
+                    const Ragged& polygons, const double* p3, std::vector<std::uint32_t>& points,
+                    std::vector<std::uint32_t>& cycle) {
   points.clear();
   for (std::uint32_t f : face_ids) points.insert(points.end(), polygons[f].begin(), polygons[f].end());
   std::sort(points.begin(), points.end());
@@ -67,7 +72,7 @@ void add_polyhedron(Grid& g, std::uint64_t domains, std::span<const std::uint32_
     for (int i = 0; i < 3; ++i) centre[i] += p3[3 * v + i] / static_cast<double>(points.size());
   g.add(kPolyhedron, 3, domains, points);
   g.has_polyhedra = true;
-  g.faces.push_back(static_cast<std::int64_t>(face_ids.size()));
+  g.faces.push_back(static_cast<Index>(face_ids.size()));
   for (std::uint32_t f : face_ids) {
     cycle.assign(polygons[f].begin(), polygons[f].end());
     std::array<double, 3> normal{0, 0, 0}, mid{0, 0, 0};
@@ -81,10 +86,10 @@ void add_polyhedron(Grid& g, std::uint64_t domains, std::span<const std::uint32_
     double dot = 0;
     for (int j = 0; j < 3; ++j) dot += normal[j] * (mid[j] - centre[j]);
     if (dot < 0) std::reverse(cycle.begin() + 1, cycle.end());
-    g.faces.push_back(static_cast<std::int64_t>(cycle.size()));
+    g.faces.push_back(static_cast<Index>(cycle.size()));
     g.faces.insert(g.faces.end(), cycle.begin(), cycle.end());
   }
-  g.faceoffsets.back() = static_cast<std::int64_t>(g.faces.size());
+  g.faceoffsets.back() = static_cast<Index>(g.faces.size());
 }
 
 // One appended-data block: UInt64 byte count, then the bytes.
@@ -99,9 +104,22 @@ Block block(std::string xml, const std::vector<T>& v) {
   return {std::move(xml), v.data(), v.size() * sizeof(T)};
 }
 
-}  // namespace
+// Whether every number of the connectivity, offsets and faces arrays fits in Int32: a bound from
+// the cells written (dimension ≤ p) and their incidences. A polygon is a face of at most two
+// polyhedra, and a polygon or polyhedron split into simplices has fewer corners than 4 × its
+// incidences, so 8 × (cells + incidences) + vertices bounds every count, id and offset.
+bool fits_int32(const CellComplex& cc, int p) {
+  std::uint64_t total = vertex_count(cc);
+  for (CellKind kind : {CellKind::interior, CellKind::boundary})
+    for (int j = 0; j <= p; ++j)
+      if (const CellLevel* level = cell_level(cc, kind, j))
+        total += 8 * (level->size() + level->facet_ids.size() + level->boundary_facet.size());
+  return total <= static_cast<std::uint64_t>(INT32_MAX);
+}
 
-WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices) {
+template <class Index>
+WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices) {
+  const std::string index_type = sizeof(Index) == 4 ? "Int32" : "Int64";
   const int d = cc.ambient_dimension, m = cc.manifold_dimension;
   const std::vector<double> xs = vertex_coordinates(cc);
   const std::vector<double> p3 = project_points(projection, xs);
@@ -109,7 +127,7 @@ WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projectio
   WrittenCounts counts;
   counts.points = nv;
 
-  Grid g;
+  Grid<Index> g;
   const int p = std::min(m, 3);
   g.reserve(cc, p, simplices);
   std::vector<std::uint32_t> scratch_points, scratch_cycle;
@@ -211,12 +229,14 @@ WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projectio
   cell_data.push_back(block(R"(<DataArray type="UInt8" Name="is_boundary" format="appended")", g.is_boundary));
   cell_data.push_back(block(R"(<DataArray type="UInt64" Name="domains" format="appended")", g.domains));
   points.push_back(block(R"(<DataArray type="Float64" Name="Points" NumberOfComponents="3" format="appended")", p3));
-  cells.push_back(block(R"(<DataArray type="Int64" Name="connectivity" format="appended")", g.connectivity));
-  cells.push_back(block(R"(<DataArray type="Int64" Name="offsets" format="appended")", g.offsets));
+  cells.push_back(
+      block(R"(<DataArray type=")" + index_type + R"(" Name="connectivity" format="appended")", g.connectivity));
+  cells.push_back(block(R"(<DataArray type=")" + index_type + R"(" Name="offsets" format="appended")", g.offsets));
   cells.push_back(block(R"(<DataArray type="UInt8" Name="types" format="appended")", g.types));
   if (g.has_polyhedra) {
-    cells.push_back(block(R"(<DataArray type="Int64" Name="faces" format="appended")", g.faces));
-    cells.push_back(block(R"(<DataArray type="Int64" Name="faceoffsets" format="appended")", g.faceoffsets));
+    cells.push_back(block(R"(<DataArray type=")" + index_type + R"(" Name="faces" format="appended")", g.faces));
+    cells.push_back(
+        block(R"(<DataArray type=")" + index_type + R"(" Name="faceoffsets" format="appended")", g.faceoffsets));
   }
 
   std::string xml =
@@ -249,6 +269,13 @@ WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projectio
   const std::string tail = "\n  </AppendedData>\n</VTKFile>\n";
   os.write(tail.data(), static_cast<std::streamsize>(tail.size()));
   return counts;
+}
+
+}  // namespace
+
+WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices) {
+  return fits_int32(cc, std::min(cc.manifold_dimension, 3)) ? write_vtu_as<std::int32_t>(os, cc, projection, simplices)
+                                                            : write_vtu_as<std::int64_t>(os, cc, projection, simplices);
 }
 
 }  // namespace coxmesh

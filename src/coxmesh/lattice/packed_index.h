@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <span>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -52,6 +53,8 @@ class PackedKeyIndex {
 
   /// find() that also reports where an absent key would go, for insert_at().
   std::uint32_t find(const std::uint32_t* key, std::uint64_t hash, std::size_t& slot) const {
+    if (!indexed()) [[unlikely]]
+      throw std::logic_error("PackedKeyIndex: look-up after release_index() (call reindex() first)");
     slot = probe_.find(LinearProbe::tag_of(hash), slot_loader(),
                        [&](std::uint32_t payload) { return equal(payload - 1, key); });
     const std::uint64_t entry = slots_[slot];
@@ -81,6 +84,7 @@ class PackedKeyIndex {
   /// on each in turn), with the table slots prefetched a few keys ahead: ids[r] = the key's id,
   /// | kNewBit where this occurrence inserted it.
   void insert_runs(std::span<const KeyRun> runs) {
+    if (!indexed()) throw std::logic_error("PackedKeyIndex: insert after release_index() (call reindex() first)");
     // Two distances, across the ends of runs (runs may be short): the home slot of the key kAhead
     // keys ahead; then, kAhead / 2 keys ahead, the stored key that home slot names if the tags match
     // (a key met before, which the insertion compares: otherwise a second, unprefetched miss).
@@ -171,6 +175,28 @@ class PackedKeyIndex {
     keys_.clear();
     size_ = 0;
     std::fill(slots_.begin(), slots_.end(), 0);
+  }
+
+  /// Frees the hash table and keeps the keys: size(), key() and simplex() still work, find() and
+  /// the inserts throw until reindex(). (A cell complex, once built, needs its keys only.)
+  void release_index() {
+    COXMESH_ASSERT(unindexed_.empty());
+    UninitializedHugeVector<std::uint64_t>().swap(slots_);  // (= {} would keep the capacity)
+    UninitializedHugeVector<std::uint64_t>().swap(unindexed_);
+    probe_ = LinearProbe();
+  }
+  bool indexed() const { return !slots_.empty(); }
+  /// Builds the hash table again after release_index().
+  void reindex() {
+    if (indexed()) return;
+    std::size_t cap = 16;
+    while (cap < 2 * static_cast<std::size_t>(size_) + 2) cap *= 2;
+    slots_ = zeroed_huge_vector<std::uint64_t>(cap);
+    probe_ = LinearProbe(cap);
+    for (std::uint32_t id = 0; id < size_; ++id) {
+      const std::uint64_t h = hash_words(key(id), words_);
+      slots_[probe_.find_empty(LinearProbe::tag_of(h), slot_loader())] = LinearProbe::entry(h, id + 1);
+    }
   }
 
   /// Bytes held (keys and slots), for memory reports.
