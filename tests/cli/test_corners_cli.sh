@@ -54,6 +54,13 @@ r = vtk.vtkXMLUnstructuredGridReader(); r.SetFileName("octant.vtu"); r.Update()
 g = r.GetOutput(); masks = vtk_to_numpy(g.GetCellData().GetArray("domains")); dims = vtk_to_numpy(g.GetCellData().GetArray("dimension"))
 corners = sorted(int(m) for m, d in zip(masks, dims) if d == 0)
 print(len(corners), corners, len(set(int(m) for m, d in zip(masks, dims) if d == 1)))')"
+"$bin" "${cube[@]}" -q -o cube.vtu
+check "vtu: the cube's corners, edges, faces and inside by their domains" "8 12 6 1" "$("$py" -c '
+import vtk
+from vtk.util.numpy_support import vtk_to_numpy
+r = vtk.vtkXMLUnstructuredGridReader(); r.SetFileName("cube.vtu"); r.Update()
+g = r.GetOutput(); masks = vtk_to_numpy(g.GetCellData().GetArray("domains")); dims = vtk_to_numpy(g.GetCellData().GetArray("dimension"))
+print(*(len(set(int(m) for m, d in zip(masks, dims) if d == j)) for j in range(4)))')"
 check "cxm version 1 still reads" "True" "$("$bin" check "$corpus/circle" --json | "$py" -c 'import json, sys; print(json.load(sys.stdin)["is_manifold"])')"
 "$py" -c '
 data = open("octant.cxm", "rb").read()

@@ -156,23 +156,32 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
       g.add(kTriangle, 2, domains, t);
     });
   };
-  // A stratified complex keeps its boundary cells among the interior ones: the lower-dimensional
-  // ones are written from there, with their bitmasks (the corners too).
+  // A stratified complex keeps every stratum in the interior levels: below the top dimension, each
+  // stratum's own cells are written with their bitmasks (the faces' (m−1)-cells, the edges where
+  // two faces meet, the corners).
   const auto domains_of = [&](int j, std::uint32_t c) { return cc.stratified() ? cc.interior[j].domains[c] : 0; };
-  auto add_stratified_boundary = [&](int top) {
-    if (!cc.stratified()) return;
-    for (std::uint32_t c = 0; c < n0; ++c)
-      if (std::popcount(cc.interior[0].domains[c]) == m) g.add(kVertex, 0, cc.interior[0].domains[c], std::span(&c, 1));
-    if (top == 1) {
-      const Ragged ends = edge_ends(cc, CellKind::interior);
-      for (std::uint32_t c = 0; c < ends.size(); ++c)
-        if (domains_of(1, c) != 0 && ends[c].size() == 2) g.add(kLine, 1, domains_of(1, c), ends[c]);
+  auto add_strata = [&](const Ragged* polygons) {
+    if (!cc.stratified() || m > 3) return;
+    for (int j = 0; j < m; ++j) {
+      const CellLevel& level = cc.interior[j];
+      const Ragged ends = j == 1 ? edge_ends(cc, CellKind::interior) : Ragged{};
+      for (std::uint32_t c = 0; c < level.size(); ++c) {
+        const std::uint64_t on = level.domains[c];
+        if (std::popcount(on) != m - j) continue;
+        if (j == 0) {
+          g.add(kVertex, 0, on, std::span(&c, 1));
+        } else if (j == 1 && ends[c].size() == 2) {
+          g.add(kLine, 1, on, ends[c]);
+        } else if (j == 2 && !(*polygons)[c].empty()) {
+          add_polygon(on, (*polygons)[c]);
+        }
+      }
     }
   };
   if (p <= 1) {
     add_level(CellKind::interior, p);
     if (m == 1) add_level(CellKind::boundary, 0);
-    add_stratified_boundary(0);
+    add_strata(nullptr);
   } else {
     const Ragged polygons = oriented_polygon_cycles(cc, p3.data());
     const std::uint32_t n2 = cell_count(cc, CellKind::interior, 2);
@@ -184,7 +193,7 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
           ++counts.skipped;
         }
       add_level(CellKind::boundary, 1);
-      add_stratified_boundary(1);
+      add_strata(&polygons);
     } else {
       for (CellKind kind : {CellKind::interior, CellKind::boundary}) {
         const Ragged faces = polyhedron_faces(cc, kind, polygons);
@@ -209,9 +218,7 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
           ++counts.skipped;
         }
       }
-      for (std::uint32_t c = 0; m == 3 && cc.stratified() && c < n2; ++c)
-        if (domains_of(2, c) != 0 && !polygons[c].empty()) add_polygon(domains_of(2, c), polygons[c]);
-      if (m == 3) add_stratified_boundary(2);
+      add_strata(&polygons);
     }
   }
   counts.cells = g.types.size();
