@@ -37,6 +37,11 @@ check "solid cube: 8 corners, 12 edges, 6 faces, a ball" "8 [8, 12, 6, 1] 1 [1, 
   "$("$bin" "${cube[@]}" --json | shape)"
 check "torus cut by two planes: 4 corners" "4 [1, 2, 1]" \
   "$("$bin" trace --preset torus --cut 1,0,0,0.3 --cut 0,0,1,0.1 --seed=-1.4,0,0 --json | shape | cut -d' ' -f1-4)"
+# Corners on lattice vertices: Freudenthal–Kuhn at scale 1/8 has vertices all over x = 0, y = 0 and
+# z = 0, so F and two domain functions vanish together at the corner (0, 0, 0).
+check "degenerate corners: a quarter disk" "3 [3, 3, 1] 1 [1, 0, 0] True" \
+  "$("$bin" trace --function "z" --triangulation freudenthal --scale 0.125 --cut 1,0,0,0 --cut 0,1,0,0 \
+     --domain "x^2+y^2-1" --seed=-0.5,-0.5,0 --json | shape)"
 check "one domain: interior and boundary strata" "0 [1, 1] 1 [1, 0, 0] True" \
   "$("$bin" trace --preset sphere --domain "z" --json | shape)"
 
