@@ -219,6 +219,18 @@ Dimension 0 has no facets: both arrays are empty.)doc")
           "domain "
           "cuts it, or 0xFFFFFFFF; an empty array without a domain.")
       .def(
+          "domains",
+          [](py::object self, int j) {
+            const Mesh& x = self.cast<const Mesh&>();
+            const CellLevel& l = level(x, j, false);
+            return view<std::uint64_t>(l.domains.data(), {static_cast<py::ssize_t>(l.domains.size())}, self);
+          },
+          py::arg("j"), R"doc(
+With several domains (a manifold with corners): for each cell of dimension j, the domains whose
+boundaries it lies on, as a bitmask (bit i: domain i + 1; 0 inside), a read-only uint64 array. Such
+a mesh keeps the cells of every stratum among the interior cells (the boundary levels are empty);
+summary()["strata"] counts them. An empty array with at most one domain.)doc")
+      .def(
           "simplex",
           [](const Mesh& x, int j, std::uint32_t c, bool boundary) {
             const CellLevel& l = level(x, j, boundary);

@@ -127,11 +127,11 @@ std::unique_ptr<Mesh> trace(const TraceArguments& a) {
     }
   }
   const FunctionPtr preset_domain = preset ? preset->domain : nullptr;
-  auto make_domain = [&]() {
-    FunctionPtr domain = preset_domain;
-    for (const std::string& text : domain_texts) domain = domain_intersection(domain, expression_domain(text, d));
-    for (const FunctionPtr& g : domain_callables) domain = domain_intersection(domain, g);
-    return domain;
+  auto make_faces = [&]() {  // each domain its own face (several: a manifold with corners)
+    std::vector<FunctionPtr> faces;
+    for (const std::string& text : domain_texts) faces.push_back(expression_domain(text, d));
+    faces.insert(faces.end(), domain_callables.begin(), domain_callables.end());
+    return faces;
   };
 
   // The box (searching seeds; bounding the walk when given, or for a function) and the default
@@ -223,8 +223,8 @@ std::unique_ptr<Mesh> trace(const TraceArguments& a) {
     MeshReport r = mesh_manifold(
         *t,
         [&]() -> ManifoldFunctions {
-          if (first) return first = false, ManifoldFunctions{f, make_domain()};
-          return {make_f(), make_domain()};
+          if (first) return first = false, ManifoldFunctions{f, preset_domain, make_faces()};
+          return {make_f(), preset_domain, make_faces()};
         },
         mo);
     mesh->cells = std::move(r.cells);
@@ -284,7 +284,8 @@ The manifold, one of:
   dim           the ambient dimension d (for presets that take it; for expressions when the
                 variables do not show it; for callables).
   domain        keep the part where D(x) < 0: a string, a callable X -> (n,), or a list of them
-                (intersected).
+                (intersected; with two or more, each is its own face: a manifold with corners,
+                traced on one thread, its strata in summary()["strata"] and Mesh.domains(j)).
 
 Where to start and where to stop:
   seeds         points near the manifold (projected onto it); default F's own seed, or points

@@ -66,7 +66,12 @@ def test_callable_with_several_equations_and_a_callable_domain():
     by_text = coxmesh.trace(function="x^2+y^2-1; z^2+w^2-1", domain="x+y-0.5", **common)
     mixed = coxmesh.trace(function=flat, domain=["x+y-0.5", lambda X: X[:, 3] - 5], **common)
     assert by_callable.boundary_simplices > 0
-    for mesh in (by_text, mixed):
+    # Two domains: a manifold with corners; w < 5 and the box cut nothing, so one boundary stratum.
+    assert mixed.cells == by_callable.cells
+    assert mixed.boundary_cells == by_callable.boundary_cells
+    assert [s["domains"] for s in mixed.summary()["strata"]] == [[], [1]]
+    assert mixed.summary()["corners"] == 0
+    for mesh in (by_text,):
         assert mesh.cells == by_callable.cells
         assert mesh.boundary_cells == by_callable.boundary_cells
         assert mesh.function_evaluations == by_callable.function_evaluations
@@ -178,6 +183,21 @@ def test_triangles_cover_the_surface():
     circle = coxmesh.trace(preset="sphere", m=1, dim=2)
     with pytest.raises(ValueError, match="surface"):
         circle.triangles()
+
+
+def test_a_list_of_domains_makes_a_manifold_with_corners():
+    # The octant x, y, z > 0 of the unit sphere: a disk with three corners and three boundary arcs.
+    mesh = coxmesh.trace(preset="sphere", domain=["-x", "-y", lambda X: -X[:, 2]], seeds=[[0.6, 0.6, 0.6]],
+                         edge_length=0.15)
+    s = mesh.summary()
+    assert s["corners"] == 3
+    assert sorted(x["domains"] for x in s["strata"]) == [[], [1], [1, 2], [1, 3], [2], [2, 3], [3]]
+    assert s["euler_characteristic"] == 1 and s["betti"] == [1, 0, 0] and s["is_manifold"]
+    masks = mesh.domains(0)
+    assert len(masks) == len(mesh.points)
+    assert sorted(m for m in masks if bin(m).count("1") == 2) == [3, 5, 6]
+    assert len(mesh.domains(2)) > 0 and not mesh.domains(2).any()  # 2-cells are all interior
+    assert len(coxmesh.trace(preset="sphere", domain=["-x"], edge_length=0.15).domains(0)) == 0
 
 
 def test_refine_moves_the_vertices_onto_the_manifold(cli):

@@ -14,6 +14,7 @@
 #include "coxmesh/mesh/mesh_winding.h"
 #include "coxmesh/oracle/expression_function.h"
 #include "coxmesh/oracle/presets.h"
+#include "coxmesh/oracle/stratified_oracle.h"
 #include "points.h"
 #include "progress.h"
 #include "report.h"
@@ -29,14 +30,14 @@ struct TraceCliOptions {
   PresetParameters params;
   std::string center;
   TriangulationOptions tri;
-  std::vector<std::string> seeds, domains;
+  std::vector<std::string> seeds, domains, cuts;
   bool auto_seed = false, json = false, quiet = false, no_output = false, simplices = false, refine = false;
   std::uint64_t max_simplices = 20'000'000;
   std::uint64_t max_memory = default_memory_limit();
   int threads = 0;  // all hardware threads
   std::string box;
   std::optional<double> domain_ball;
-  std::string domain_center, cut;
+  std::string domain_center;
   std::string output, format, project, pole;
   std::vector<const CLI::Option*> preset_only;  // options that make no sense with --function
   const CLI::Option *function_given = nullptr, *dim_given = nullptr, *domain_center_given = nullptr;
@@ -77,7 +78,7 @@ void run(TraceCliOptions o) {
                              o.params.dim, o.tri.edge_length, o.threads);
     // auto: the winding oracle where the frames say the normal bundle is not orientable (and only
     // the tube bounds the walk), which it meshes; the per-vertex function everywhere else.
-    const bool domains = !o.domains.empty() || o.domain_ball || !o.cut.empty() || !o.box.empty() || o.refine;
+    const bool domains = !o.domains.empty() || o.domain_ball || !o.cuts.empty() || !o.box.empty() || o.refine;
     if (o.points.oracle == "auto") {
       cloud->oracle = wants_winding_oracle(cloud->problem.diagnostics) && !domains ? "winding" : "vertex";
       cloud->oracle_chosen = cloud->oracle == "winding";
@@ -88,8 +89,7 @@ void run(TraceCliOptions o) {
       std::cerr << "coxmesh: warning: " << cloud->problem.diagnostics.warning << "\n";
   }
   if (!from_text && !cloud && !o.center.empty()) o.params.center = parse_point(o.center, "--center");
-  std::function<std::pair<FunctionPtr, FunctionPtr>()> make_problem =
-      [&o, &cloud, from_text]() -> std::pair<FunctionPtr, FunctionPtr> {
+  std::function<ManifoldFunctions()> make_problem = [&o, &cloud, from_text]() -> ManifoldFunctions {
     FunctionPtr f, domain;
     if (cloud) {
       f = cloud->problem.function;
@@ -102,8 +102,8 @@ void run(TraceCliOptions o) {
       domain = preset.domain;
     }
     const int d = f->ambient_dimension();
-    // Domains: the preset's (replaced by --domain-ball if given), then each --domain and --cut,
-    // intersected by max.
+    // Domains: the preset's (replaced by --domain-ball if given), then each --domain and --cut:
+    // each its own face (several make a manifold with corners).
     if (o.domain_ball) {
       std::vector<double> c =
           o.domain_center.empty() ? std::vector<double>(d, 0.0) : parse_point(o.domain_center, "--domain-center");
@@ -111,20 +111,22 @@ void run(TraceCliOptions o) {
         throw InputError("--domain-center must have " + std::to_string(d) + " coordinates");
       domain = ball_domain(c, *o.domain_ball);
     }
-    for (const std::string& text : o.domains) domain = domain_intersection(domain, expression_domain(text, d));
-    if (!o.cut.empty()) {
-      std::vector<double> nc = parse_point(o.cut, "--cut");
+    std::vector<FunctionPtr> faces;
+    for (const std::string& text : o.domains) faces.push_back(expression_domain(text, d));
+    for (const std::string& cut : o.cuts) {
+      std::vector<double> nc = parse_point(cut, "--cut");
       if (static_cast<int>(nc.size()) != d + 1)
         throw InputError("--cut needs d+1 = " + std::to_string(d + 1) + " numbers n1,...,nd,c");
       const double c = nc.back();
       nc.pop_back();
-      domain = domain_intersection(domain, half_space_domain(nc, c));
+      faces.push_back(half_space_domain(nc, c));
     }
-    return {f, domain};
+    if (faces.size() + (domain ? 1 : 0) > static_cast<std::size_t>(kMaxDomains))
+      throw InputError("at most " + std::to_string(kMaxDomains) + " domains (--domain, --cut, --domain-ball)");
+    return {f, domain, faces};
   };
-  // (no structured binding: clang 14 cannot capture one in a lambda)
-  std::pair<FunctionPtr, FunctionPtr> problem = make_problem();
-  FunctionPtr f = std::move(problem.first), domain = std::move(problem.second);
+  const ManifoldFunctions problem = make_problem();
+  const FunctionPtr& f = problem.f;
   if (cloud) {
     default_edge = cloud->problem.edge_length;
     name = o.points.file;
@@ -162,6 +164,7 @@ void run(TraceCliOptions o) {
     early.projection = o.project;
     early.simplices = o.simplices;
     check_format(format, d, d - f->codimension(), early);
+    if (problem.domains.size() + (problem.domain ? 1 : 0) >= 2) check_stratified_format(format, d - f->codimension());
   } else if (o.simplices || !o.pole.empty()) {
     throw InputError(std::string(o.simplices ? "--simplices" : "--pole") +
                      " applies to the output file; there is none");
@@ -232,7 +235,7 @@ void run(TraceCliOptions o) {
     wo.native.source = cloud ? "points " + o.points.file : from_text ? "function " + o.function : "preset " + o.preset;
     for (const std::string& text : o.domains) wo.native.source += "; domain " + text;
     if (o.domain_ball) wo.native.source += "; domain-ball " + std::to_string(*o.domain_ball);
-    if (!o.cut.empty()) wo.native.source += "; cut " + o.cut;
+    for (const std::string& cut : o.cuts) wo.native.source += "; cut " + cut;
     wo.native.complete = r.status == TraceStatus::complete;
     wo.native.message = r.message;
     for (int i = 0; i < d; ++i)
@@ -247,7 +250,7 @@ void run(TraceCliOptions o) {
   SampleOracleCounts counts;
   MeshReport report;
   if (cloud && (cloud->oracle == "local-pca" || cloud->oracle == "winding")) {
-    if (!o.domains.empty() || o.domain_ball || !o.cut.empty() || !o.box.empty())
+    if (!o.domains.empty() || o.domain_ball || !o.cuts.empty() || !o.box.empty())
       throw InputError("--oracle " + cloud->oracle +
                        " takes no --domain, --domain-ball, --cut or --box (only the tube)");
     if (o.refine) throw InputError("--refine needs the function F; --oracle " + cloud->oracle + " has none");
@@ -257,9 +260,8 @@ void run(TraceCliOptions o) {
     report = mesh_manifold(
         t,
         [&]() -> ManifoldFunctions {
-          if (first) return first = false, ManifoldFunctions{f, domain};
-          auto [fw, dw] = make_problem();
-          return {fw, dw};
+          if (first) return first = false, problem;
+          return make_problem();
         },
         mo, write ? write_file : WhileTopology{});
   }
@@ -323,12 +325,14 @@ void register_trace(CLI::App& app, int& status) {
       "(default: 3/4 of the machine's memory)");
   cmd->add_option("--box", o->box,
                   "lo1,...,lod,hi1,...,hid: stop at this box and search seeds in it (--function: default [-2,2]^d)");
-  cmd->add_option("--domain", o->domains, "keep the part where this expression is < 0; repeat to intersect")
+  cmd->add_option("--domain", o->domains,
+                  "keep the part where this expression is < 0; repeat to intersect (each domain its own face: "
+                  "a manifold with corners)")
       ->take_all();
   cmd->add_option("--domain-ball", o->domain_ball, "keep the part inside the ball of this radius");
   o->domain_center_given =
       cmd->add_option("--domain-center", o->domain_center, "centre of --domain-ball (default: origin)");
-  cmd->add_option("--cut", o->cut, "n1,...,nd,c: keep the part where <n,x> < c");
+  cmd->add_option("--cut", o->cuts, "n1,...,nd,c: keep the part where <n,x> < c; repeat for more faces")->take_all();
   cmd->add_option(
       "-o,--output", o->output,
       "write the mesh to FILE (.vtu .off .ply .obj .mesh .cxm .stl .msh); default NAME.vtu (not with --json)");

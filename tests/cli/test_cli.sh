@@ -43,8 +43,8 @@ out=$("$bin" trace)
 check "trace default torus" "1" "$(grep -c 'Euler characteristic 0, Betti numbers (Z/2) 1 2 1' <<<"$out")"
 json=$("$bin" trace --preset sphere --json)
 for key in ambient_dimension manifold_dimension traced_simplices boundary_simplices cells boundary_cells \
-           euler_characteristic betti is_manifold function_evaluations timings; do
-  check "trace json has $key" "1" "$(grep -c "\"$key\"" <<<"$json")"
+           euler_characteristic betti is_manifold function_evaluations timings corners strata; do
+  check "trace json has $key" "1" "$(grep -c "^  \"$key\"" <<<"$json")"  # (top level: 2 spaces)
 done
 check "trace sphere chi" "1" "$(tr -d ' \n' <<<"$json" | grep -c '"euler_characteristic":2')"
 json=$("$bin" trace --preset sphere --domain-ball 0.5 --domain-center 1,0,0 --json | tr -d ' \n')

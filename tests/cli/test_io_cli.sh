@@ -167,22 +167,22 @@ check "convert cxm -> cxm is byte-identical" "same" "$(cmp -s torus.cxm again.cx
 # VTU: points = all vertex cells; cells = top cells (polygons / polyhedra) + boundary cells one dimension down.
 c() { jget "$1.json" "$2"; }
 "$bin" convert torus.cxm torus.vtu > /dev/null
-check "vtu torus (VTK reader)" "$(c torus 'j["cells"][0]') $(c torus 'j["cells"][2]') 7 on_boundary:1 dimension is_boundary" "$(vtk_counts torus.vtu)"
+check "vtu torus (VTK reader)" "$(c torus 'j["cells"][0]') $(c torus 'j["cells"][2]') 7 on_boundary:1 dimension is_boundary domains" "$(vtk_counts torus.vtu)"
 "$bin" convert cap.cxm cap.vtu > /dev/null
 check "vtu cap with boundary lines" \
-  "$(c cap 'j["cells"][0] + j["boundary_cells"][0]') $(c cap 'j["cells"][2] + j["boundary_cells"][1]') 3,7 on_boundary:1 dimension is_boundary" \
+  "$(c cap 'j["cells"][0] + j["boundary_cells"][0]') $(c cap 'j["cells"][2] + j["boundary_cells"][1]') 3,7 on_boundary:1 dimension is_boundary domains" \
   "$(vtk_counts cap.vtu)"
 "$bin" convert s3.cxm s3.vtu --project pca > /dev/null
-check "vtu S^3 polyhedra, R^4 coordinates kept" "$(c s3 'j["cells"][0]') $(c s3 'j["cells"][3]') 42 on_boundary:1 coordinates:4 dimension is_boundary" "$(vtk_counts s3.vtu)"
+check "vtu S^3 polyhedra, R^4 coordinates kept" "$(c s3 'j["cells"][0]') $(c s3 'j["cells"][3]') 42 on_boundary:1 coordinates:4 dimension is_boundary domains" "$(vtk_counts s3.vtu)"
 check "vtu S^3: VTK reads every polyhedron as a closed surface" "$(c s3 'j["cells"][3]') 0" "$(vtk_polyhedra s3.vtu)"
 "$bin" convert ball.cxm ball.vtu > /dev/null
 check "vtu 3-ball: polyhedra and boundary polygons" \
-  "$(c ball 'j["cells"][0] + j["boundary_cells"][0]') $(c ball 'j["cells"][3] + j["boundary_cells"][2]') 7,42 on_boundary:1 coordinates:4 dimension is_boundary" \
+  "$(c ball 'j["cells"][0] + j["boundary_cells"][0]') $(c ball 'j["cells"][3] + j["boundary_cells"][2]') 7,42 on_boundary:1 coordinates:4 dimension is_boundary domains" \
   "$(vtk_counts ball.vtu)"
 check "vtu 3-ball: VTK reads every polyhedron as a closed surface" "$(c ball 'j["cells"][3]') 0" "$(vtk_polyhedra ball.vtu)"
 "$bin" trace --preset sphere --m 4 --dim 5 --edge-length 0.9 --domain-ball 1 --domain-center 1,0,0,0,0 --json -o s4.vtu > s4.json
 check "vtu 4-manifold with boundary: the 3-skeleton" \
-  "$(c s4 'j["cells"][0] + j["boundary_cells"][0]') $(c s4 'j["cells"][3] + j["boundary_cells"][3]') 42 on_boundary:1 coordinates:5 dimension is_boundary" \
+  "$(c s4 'j["cells"][0] + j["boundary_cells"][0]') $(c s4 'j["cells"][3] + j["boundary_cells"][3]') 42 on_boundary:1 coordinates:5 dimension is_boundary domains" \
   "$(vtk_counts s4.vtu)"
 "$bin" trace --function "x^2+y^2-1" --edge-length 0.2 -o circle.vtu --quiet
 check "vtu curve: lines" "1" "$(vtk_counts circle.vtu | grep -c '^[0-9]* [0-9]* 3 ')"

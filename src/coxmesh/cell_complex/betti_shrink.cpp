@@ -155,6 +155,10 @@ std::vector<std::uint32_t> closed_top_pieces(const CellComplex& cc) {
   if (!top.boundary_facet.empty())
     for (std::uint32_t c = 0; c < top.size(); ++c)
       if (top.boundary_facet[c] != CellLevel::kNone) open[pieces.find(c)] = 1;
+  if (const CellLevel& below = cc.interior[m - 1]; !below.domains.empty())  // stratified: boundary facets
+    for (std::uint32_t c = 0; c < top.size(); ++c)
+      for (std::uint32_t f : top.facets(c))
+        if (below.domains[f] != 0) open[pieces.find(c)] = 1;
   std::vector<std::uint32_t> closed;
   for (std::uint32_t c = 0; c < top.size(); ++c)
     if (pieces.find(c) == c && !open[c]) closed.push_back(c);

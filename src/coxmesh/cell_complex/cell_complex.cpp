@@ -40,7 +40,8 @@ std::size_t CellComplex::bytes() const {
   std::size_t b = held_bytes(vertices) + held_bytes(boundary_vertices);
   for (const auto* levels : {&interior, &boundary})
     for (const CellLevel& l : *levels)
-      b += l.simplices.bytes() + held_bytes(l.facet_offsets) + held_bytes(l.facet_ids) + held_bytes(l.boundary_facet);
+      b += l.simplices.bytes() + held_bytes(l.facet_offsets) + held_bytes(l.facet_ids) + held_bytes(l.boundary_facet) +
+           l.domains.capacity() * sizeof(std::uint64_t);
   return b;
 }
 

@@ -1,5 +1,7 @@
 #include "coxmesh/cell_complex/topology.h"
 
+#include <bit>
+
 #include "coxmesh/cell_complex/betti.h"
 #include "coxmesh/cell_complex/global_cells.h"
 
@@ -71,6 +73,49 @@ std::string check_manifold(const CellComplex& cc) {
   return "";
 }
 
+// A manifold with corners (stratified complex): the closure of every stratum J (dimension
+// n = m − |J|) is a pseudo-manifold with boundary. A cell of stratum J of dimension n − 1 lies in
+// exactly 2 cells of dimension n of J; a cell of stratum J lies in exactly one cell of stratum
+// J \ {i} for each i ∈ J (on its own simplex: at a corner, one edge along each face); and every
+// cell below the top of its stratum lies in a cell of its stratum.
+std::string check_stratified_manifold(const CellComplex& cc) {
+  const int m = cc.manifold_dimension;
+  const auto& in = cc.interior;
+  for (int j = 0; j < m; ++j) {
+    const CellLevel &lower = in[j], &upper = in[j + 1];
+    std::vector<std::uint32_t> same(lower.size(), 0), fewer(lower.size(), 0);
+    std::vector<std::uint64_t> dropped(lower.size(), 0);
+    for (std::uint32_t e = 0; e < upper.size(); ++e)
+      for (std::uint32_t c : upper.facets(e)) {
+        const std::uint64_t mine = lower.domains[c], theirs = upper.domains[e];
+        if (theirs == mine) {
+          ++same[c];
+        } else if ((theirs & mine) == theirs && std::popcount(mine ^ theirs) == 1) {
+          ++fewer[c], dropped[c] |= mine ^ theirs;
+        } else {
+          return "a cell of domains " + std::to_string(mine) + " is a facet of a cell of domains " +
+                 std::to_string(theirs);
+        }
+      }
+    for (std::uint32_t c = 0; c < lower.size(); ++c) {
+      const std::uint64_t mine = lower.domains[c];
+      const int top = m - std::popcount(mine);
+      if (fewer[c] != static_cast<std::uint32_t>(std::popcount(mine)) || dropped[c] != mine)
+        return "a " + std::to_string(j) + "-cell of domains " + std::to_string(mine) +
+               " does not lie in one cell of each stratum with one domain fewer";
+      if (j == top - 1 && same[c] != 2)
+        return "a " + std::to_string(j) + "-cell of domains " + std::to_string(mine) + " lies in " +
+               std::to_string(same[c]) + " cells of its stratum above it instead of 2";
+      if (j < top - 1 && same[c] == 0)
+        return "a " + std::to_string(j) + "-cell of domains " + std::to_string(mine) +
+               " lies in no cell of its stratum above it";
+      if (j > top)
+        return "a cell of dimension " + std::to_string(j) + " in a stratum of dimension " + std::to_string(top);
+    }
+  }
+  return "";
+}
+
 }  // namespace
 
 TopologyReport analyze_topology(const CellComplex& cc, bool compute_betti) {
@@ -80,7 +125,13 @@ TopologyReport analyze_topology(const CellComplex& cc, bool compute_betti) {
     r.cells.push_back(cc.interior[j].size());
     r.euler_characteristic += (j % 2 ? -1LL : 1LL) * static_cast<long long>(cc.interior[j].size());
   }
-  for (int j = 0; j < m; ++j) {
+  if (cc.stratified()) {  // (all cells are in `interior`: tell the boundary apart by their domains)
+    r.boundary_cells.assign(static_cast<std::size_t>(m), 0);
+    for (int j = 0; j < m; ++j)
+      for (std::uint64_t domains : cc.interior[j].domains)
+        if (domains != 0) --r.cells[j], ++r.boundary_cells[j];
+  }
+  for (int j = 0; j < m && !cc.stratified(); ++j) {
     const std::size_t n = j < static_cast<int>(cc.boundary.size()) ? cc.boundary[j].size() : 0;
     r.boundary_cells.push_back(n);
     r.euler_characteristic += (j % 2 ? -1LL : 1LL) * static_cast<long long>(n);
@@ -90,7 +141,7 @@ TopologyReport analyze_topology(const CellComplex& cc, bool compute_betti) {
   else if (const std::string open = check_closed(cc); !open.empty())
     r.manifold_problem = "not a closed complex: " + open;
   else
-    r.closed = true, r.manifold_problem = check_manifold(cc);
+    r.closed = true, r.manifold_problem = cc.stratified() ? check_stratified_manifold(cc) : check_manifold(cc);
   r.is_manifold = r.manifold_problem.empty();
   if (compute_betti && r.closed) r.betti = betti_numbers(cc, r.is_manifold);
   return r;

@@ -16,7 +16,7 @@ static_assert(std::endian::native == std::endian::little, "the .cxm reader and w
 namespace {
 
 constexpr const char* kMagic = "coxmesh-cxm";
-constexpr int kVersion = 1;
+constexpr int kVersion = 2;  // 2: manifolds with corners (domain bitmasks); version 1 files still read
 
 template <class T>
 void write_array(std::ostream& os, const T* data, std::size_t n) {
@@ -26,7 +26,8 @@ void write_array(std::ostream& os, const T* data, std::size_t n) {
 nlohmann::json level_json(const CellLevel& level) {
   return {{"cells", level.size()},
           {"facet_entries", level.facet_ids.size()},
-          {"boundary_facet", !level.boundary_facet.empty()}};
+          {"boundary_facet", !level.boundary_facet.empty()},
+          {"domains", !level.domains.empty()}};
 }
 
 struct Reader {
@@ -69,6 +70,15 @@ bool valid_key(const std::uint32_t* key, int d, int k) {
   return true;
 }
 
+// A facet of a cell (J, σ) is (J, a facet of σ) or, in a stratified complex, (J ∪ {i}, σ).
+bool is_stratified_facet(const CellLevel& below, std::uint32_t f, const CellLevel& level, std::uint32_t c, int d) {
+  const Simplex face = below.simplices.simplex(f, d), cell = level.simplices.simplex(c, d);
+  if (level.domains.empty()) return is_face_of(face, cell);
+  const std::uint64_t mine = level.domains[c], theirs = below.domains[f];
+  if (theirs == mine) return is_face_of(face, cell);
+  return (theirs & mine) == mine && std::popcount(theirs ^ mine) == 1 && face == cell;
+}
+
 }  // namespace
 
 void write_native(std::ostream& os, const CellComplex& cc, const NativeInfo& info) {
@@ -78,7 +88,8 @@ void write_native(std::ostream& os, const CellComplex& cc, const NativeInfo& inf
   h["version"] = kVersion;
   h["ambient_dimension"] = d;
   h["manifold_dimension"] = m;
-  h["key_words"] = packed_words(d);
+  h["key_words"] = cc.stratified() ? stratum_key_words(d) : packed_words(d);
+  h["domains"] = cc.domain_count;
   h["interior"] = nlohmann::json::array();
   h["boundary"] = nlohmann::json::array();
   for (const CellLevel& l : cc.interior) h["interior"].push_back(level_json(l));
@@ -94,11 +105,12 @@ void write_native(std::ostream& os, const CellComplex& cc, const NativeInfo& inf
   os.write(line.data(), static_cast<std::streamsize>(line.size()));
   for (const auto* levels : {&cc.interior, &cc.boundary})
     for (const CellLevel& l : *levels) {
-      if (l.simplices.words() != packed_words(d)) throw InputError("write_native: a level has keys of the wrong width");
+      if (l.simplices.words() != h["key_words"]) throw InputError("write_native: a level has keys of the wrong width");
       if (l.size()) write_array(os, l.simplices.key(0), static_cast<std::size_t>(l.size()) * l.simplices.words());
       write_array(os, l.facet_offsets.data(), l.facet_offsets.size());
       write_array(os, l.facet_ids.data(), l.facet_ids.size());
       write_array(os, l.boundary_facet.data(), l.boundary_facet.size());
+      write_array(os, l.domains.data(), l.domains.size());
     }
   write_array(os, cc.vertices.data(), cc.vertices.size());
   write_array(os, cc.boundary_vertices.data(), cc.boundary_vertices.size());
@@ -123,20 +135,24 @@ NativeFile read_native(std::istream& in, const std::string& name) {
   nlohmann::json h = nlohmann::json::parse(line, nullptr, false);
   if (h.is_discarded() || !h.is_object() || !h.contains("format") || h["format"] != kMagic)
     r.fail("not a .cxm file (bad header)");
-  if (!h.contains("version") || h["version"] != kVersion) r.fail("unsupported .cxm version " + h["version"].dump());
+  if (!h.contains("version") || (h["version"] != 1 && h["version"] != kVersion))
+    r.fail("unsupported .cxm version " + h["version"].dump() + " (this build reads versions 1 and 2)");
 
   NativeFile out;
   CellComplex& cc = out.cells;
   std::uint64_t expected = 0;                           // bytes of the binary part, from the header
   std::vector<std::array<std::uint64_t, 2>> shapes[2];  // per level: cells, facet entries
-  std::vector<bool> has_bf[2];
-  int d = 0, m = 0, words = 0;
+  std::vector<bool> has_bf[2], has_domains[2];
+  int d = 0, m = 0, words = 0, domain_count = 0;
   std::uint64_t n0 = 0, nb0 = 0;
   try {
     d = static_cast<int>(header_integer(h.at("ambient_dimension"), kMaxDimension, r, "ambient_dimension"));
     m = static_cast<int>(header_integer(h.at("manifold_dimension"), kMaxDimension, r, "manifold_dimension"));
     words = static_cast<int>(header_integer(h.at("key_words"), packed_words(kMaxDimension), r, "key_words"));
-    if (d < 1 || d > kMaxDimension || m < 0 || m >= d || words != packed_words(d))
+    if (h.contains("domains"))
+      domain_count = static_cast<int>(header_integer(h.at("domains"), kMaxDomains, r, "domains"));
+    if (d < 1 || d > kMaxDimension || m < 0 || m >= d ||
+        words != (domain_count ? stratum_key_words(d) : packed_words(d)))
       r.fail("inconsistent dimensions in the header");
     const auto& levels_in = h.at("interior");
     const auto& levels_bd = h.at("boundary");
@@ -149,10 +165,13 @@ NativeFile read_native(std::istream& in, const std::string& name) {
         const std::uint64_t n = header_integer(l.at("cells"), PackedKeyIndex::kAbsent, r, "cells");
         const std::uint64_t f = header_integer(l.at("facet_entries"), 1ull << 32, r, "facet_entries");
         const bool bf = l.at("boundary_facet").get<bool>();
+        const bool masks = l.contains("domains") && l.at("domains").get<bool>();
+        if (masks != (domain_count > 0 && kind == 0)) r.fail("bad header: domain bitmasks on the wrong levels");
+        has_domains[kind].push_back(masks);
         if (n >= PackedKeyIndex::kAbsent || f >= (1ull << 32)) r.fail("too many cells in a level");
         shapes[kind].push_back({n, f});
         has_bf[kind].push_back(bf);
-        expected += 4 * (n * words + n + 1 + f + (bf ? n : 0));
+        expected += 4 * (n * words + n + 1 + f + (bf ? n : 0)) + (masks ? 8 * n : 0);
       }
       ++kind;
     }
@@ -185,6 +204,7 @@ NativeFile read_native(std::istream& in, const std::string& name) {
 
   cc.ambient_dimension = d;
   cc.manifold_dimension = m;
+  cc.domain_count = domain_count;
   const int k = d - m;
   for (int kind = 0; kind < 2; ++kind) {
     auto& levels = kind == 0 ? cc.interior : cc.boundary;
@@ -197,12 +217,24 @@ NativeFile read_native(std::istream& in, const std::string& name) {
       const int dim = k + static_cast<int>(j) + kind;  // interior: k + j; boundary: k + 1 + j
       for (std::uint64_t c = 0; c < n; ++c) {
         const std::uint32_t* key = keys.data() + c * words;
-        if (!valid_key(key, d, dim)) r.fail("cell " + std::to_string(c) + " of a level has an invalid simplex key");
+        // (a stratified cell of stratum J lies on a simplex of dimension k + |J| + j)
+        const std::uint64_t stratum = domain_count ? stratum_of_key(key, d) : 0;
+        if ((domain_count < 64 && stratum >> domain_count != 0) || std::popcount(stratum) > m - static_cast<int>(j))
+          r.fail("cell " + std::to_string(c) + " of a level lies on domains that do not exist or meet too often");
+        if (!valid_key(key, d, dim + std::popcount(stratum)))
+          r.fail("cell " + std::to_string(c) + " of a level has an invalid simplex key");
         if (!level.simplices.insert(key).second) r.fail("a simplex key appears twice in one level");
       }
       level.facet_offsets = r.array<std::uint32_t>(n + 1, "facet offsets");
       level.facet_ids = r.array<std::uint32_t>(f, "facet ids");
       if (has_bf[kind][j]) level.boundary_facet = r.array<std::uint32_t>(n, "boundary facets");
+      if (has_domains[kind][j]) {
+        const auto masks = r.array<std::uint64_t>(n, "domain bitmasks");
+        level.domains.assign(masks.begin(), masks.end());
+        for (std::uint64_t c = 0; c < n; ++c)
+          if (level.domains[c] != stratum_of_key(level.simplices.key(static_cast<std::uint32_t>(c)), d))
+            r.fail("cell " + std::to_string(c) + " of a level has domains that do not match its key");
+      }
       if (level.facet_offsets[0] != 0 || level.facet_offsets[n] != f)
         r.fail("facet offsets do not match the facet count");
       for (std::uint64_t c = 0; c < n; ++c)
@@ -214,11 +246,10 @@ NativeFile read_native(std::istream& in, const std::string& name) {
       // of the cell's simplex (anything else would make the topology meaningless, or its reduction loop).
       for (std::uint64_t c = 0; j > 0 && c < n; ++c) {
         const auto facets = level.facets(static_cast<std::uint32_t>(c));
-        const Simplex cell = level.simplices.simplex(static_cast<std::uint32_t>(c), d);
         for (std::size_t a = 0; a < facets.size(); ++a) {
           if (std::find(facets.begin(), facets.begin() + a, facets[a]) != facets.begin() + a)
             r.fail("cell " + std::to_string(c) + " of a level lists the same facet twice");
-          if (!is_face_of(levels[j - 1].simplices.simplex(facets[a], d), cell))
+          if (!is_stratified_facet(levels[j - 1], facets[a], level, static_cast<std::uint32_t>(c), d))
             r.fail("cell " + std::to_string(c) + " of a level lists a facet that is not a face of it");
         }
       }

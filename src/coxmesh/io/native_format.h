@@ -11,13 +11,16 @@
 //                facet_offsets   cells + 1          uint32
 //                facet_ids       facet_entries      uint32
 //                boundary_facet  cells              uint32   (only when the level's flag is set)
+//                domains         cells              uint64   (only when the level's flag is set)
 //              vertices           n0 × d             float64
 //              boundary_vertices  nb0 × d            float64
 //
-// Header keys: "format": "coxmesh-cxm", "version": 1, "ambient_dimension", "manifold_dimension",
-// "key_words" (= packed_words(d)), "interior" and "boundary": one object per level
-// {"cells", "facet_entries", "boundary_facet": bool}, "vertices" (n0), "boundary_vertices" (nb0),
-// and "info" (NativeInfo below).
+// Header keys: "format": "coxmesh-cxm", "version": 2, "ambient_dimension", "manifold_dimension",
+// "domains" (the domain functions of a stratified complex, cell_complex.h; 0 otherwise),
+// "key_words" (packed_words(d), or stratum_key_words(d) when stratified), "interior" and
+// "boundary": one object per level {"cells", "facet_entries", "boundary_facet": bool,
+// "domains": bool (the interior levels of a stratified complex)}, "vertices" (n0),
+// "boundary_vertices" (nb0), and "info" (NativeInfo below). Version 1 (no "domains") still reads.
 #pragma once
 
 #include <cstdint>

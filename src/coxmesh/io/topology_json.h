@@ -12,7 +12,10 @@ namespace coxmesh {
 /// Keys ambient_dimension, manifold_dimension, traced_simplices (|S| = interior vertex cells),
 /// boundary_simplices (|S_∂| = boundary vertex cells), cells, boundary_cells, closed,
 /// euler_characteristic, betti and components (only for a closed complex: an open one has no
-/// topology to report), is_manifold, manifold_problem (only when not a manifold), cell_complex_bytes.
+/// topology to report), is_manifold, manifold_problem (only when not a manifold), strata (per
+/// stratum: "domains", the 1-based domain functions whose boundaries it lies on, [] for the
+/// interior; "dimension"; "cells" per dimension), corners (vertex cells of 0-dimensional strata
+/// other than the interior: where m domain boundaries meet M), cell_complex_bytes.
 nlohmann::json topology_json(const CellComplex& cc, const TopologyReport& topo);
 
 }  // namespace coxmesh

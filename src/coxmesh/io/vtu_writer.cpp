@@ -25,14 +25,16 @@ template <class Index>
 struct Grid {
   std::vector<Index> connectivity, offsets, faces, faceoffsets;
   std::vector<std::uint8_t> types, dimension, is_boundary;
+  std::vector<std::uint64_t> domains;  // bit i: the cell lies on D_{i+1} = 0 (a boundary cell of one domain: 1)
   bool has_polyhedra = false;
 
-  void add(std::uint8_t type, int dim, bool boundary, std::span<const std::uint32_t> points) {
+  void add(std::uint8_t type, int dim, std::uint64_t on_domains, std::span<const std::uint32_t> points) {
     connectivity.insert(connectivity.end(), points.begin(), points.end());
     offsets.push_back(static_cast<Index>(connectivity.size()));
     types.push_back(type);
     dimension.push_back(static_cast<std::uint8_t>(dim));
-    is_boundary.push_back(boundary ? 1 : 0);
+    is_boundary.push_back(on_domains != 0 ? 1 : 0);
+    domains.push_back(on_domains);
     faceoffsets.push_back(-1);
   }
 
@@ -49,7 +51,7 @@ struct Grid {
           cells += split, corners += j == 0 ? n : (simplices && j >= 2 ? (j + 1) * split : incidences);
         }
     connectivity.reserve(corners), offsets.reserve(cells), types.reserve(cells), dimension.reserve(cells);
-    is_boundary.reserve(cells), faceoffsets.reserve(cells);
+    is_boundary.reserve(cells), domains.reserve(cells), faceoffsets.reserve(cells);
   }
 };
 
@@ -58,8 +60,9 @@ std::array<double, 3> vec(const double* p3, std::uint32_t v) { return {p3[3 * v]
 // Adds a 3-cell as a VTK polyhedron with faces turned outwards (Newell normal against the
 // direction from the cell's centroid to the face's centroid). points, cycle: scratch space.
 template <class Index>
-void add_polyhedron(Grid<Index>& g, bool boundary, std::span<const std::uint32_t> face_ids, const Ragged& polygons,
-                    const double* p3, std::vector<std::uint32_t>& points, std::vector<std::uint32_t>& cycle) {
+void add_polyhedron(Grid<Index>& g, std::uint64_t domains, std::span<const std::uint32_t> face_ids,
+                    const Ragged& polygons, const double* p3, std::vector<std::uint32_t>& points,
+                    std::vector<std::uint32_t>& cycle) {
   points.clear();
   for (std::uint32_t f : face_ids) points.insert(points.end(), polygons[f].begin(), polygons[f].end());
   std::sort(points.begin(), points.end());
@@ -67,7 +70,7 @@ void add_polyhedron(Grid<Index>& g, bool boundary, std::span<const std::uint32_t
   std::array<double, 3> centre{0, 0, 0};
   for (std::uint32_t v : points)
     for (int i = 0; i < 3; ++i) centre[i] += p3[3 * v + i] / static_cast<double>(points.size());
-  g.add(kPolyhedron, 3, boundary, points);
+  g.add(kPolyhedron, 3, domains, points);
   g.has_polyhedra = true;
   g.faces.push_back(static_cast<Index>(face_ids.size()));
   for (std::uint32_t f : face_ids) {
@@ -146,27 +149,51 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
     }
   };
   // A polygon as itself, or (simplices) as its fan triangles.
-  auto add_polygon = [&](bool boundary, std::span<const std::uint32_t> cycle) {
-    if (!simplices) return g.add(kPolygon, 2, boundary, cycle);
+  auto add_polygon = [&](std::uint64_t domains, std::span<const std::uint32_t> cycle) {
+    if (!simplices) return g.add(kPolygon, 2, domains, cycle);
     for_each_fan_triangle(cycle, [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
       const std::array<std::uint32_t, 3> t{a, b, c};
-      g.add(kTriangle, 2, boundary, t);
+      g.add(kTriangle, 2, domains, t);
     });
+  };
+  // A stratified complex keeps every stratum in the interior levels: below the top dimension, each
+  // stratum's own cells are written with their bitmasks (the faces' (m−1)-cells, the edges where
+  // two faces meet, the corners).
+  const auto domains_of = [&](int j, std::uint32_t c) { return cc.stratified() ? cc.interior[j].domains[c] : 0; };
+  auto add_strata = [&](const Ragged* polygons) {
+    if (!cc.stratified() || m > 3) return;
+    for (int j = 0; j < m; ++j) {
+      const CellLevel& level = cc.interior[j];
+      const Ragged ends = j == 1 ? edge_ends(cc, CellKind::interior) : Ragged{};
+      for (std::uint32_t c = 0; c < level.size(); ++c) {
+        const std::uint64_t on = level.domains[c];
+        if (std::popcount(on) != m - j) continue;
+        if (j == 0) {
+          g.add(kVertex, 0, on, std::span(&c, 1));
+        } else if (j == 1 && ends[c].size() == 2) {
+          g.add(kLine, 1, on, ends[c]);
+        } else if (j == 2 && !(*polygons)[c].empty()) {
+          add_polygon(on, (*polygons)[c]);
+        }
+      }
+    }
   };
   if (p <= 1) {
     add_level(CellKind::interior, p);
     if (m == 1) add_level(CellKind::boundary, 0);
+    add_strata(nullptr);
   } else {
     const Ragged polygons = oriented_polygon_cycles(cc, p3.data());
     const std::uint32_t n2 = cell_count(cc, CellKind::interior, 2);
     if (p == 2) {
       for (std::uint32_t c = 0; c < polygons.size(); ++c)
         if (!polygons[c].empty()) {
-          add_polygon(c >= n2, polygons[c]);
+          add_polygon(c >= n2 ? 1 : domains_of(2, c), polygons[c]);
         } else {
           ++counts.skipped;
         }
       add_level(CellKind::boundary, 1);
+      add_strata(&polygons);
     } else {
       for (CellKind kind : {CellKind::interior, CellKind::boundary}) {
         const Ragged faces = polyhedron_faces(cc, kind, polygons);
@@ -175,27 +202,30 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
             for_each_cone_tetrahedron(faces[c], polygons, p3.data(),
                                       [&](std::uint32_t a, std::uint32_t b, std::uint32_t c2, std::uint32_t e) {
                                         const std::array<std::uint32_t, 4> t{a, b, c2, e};
-                                        g.add(kTetrahedron, 3, kind == CellKind::boundary, t);
+                                        g.add(kTetrahedron, 3, kind == CellKind::boundary ? 1 : domains_of(3, c), t);
                                       });
           } else if (!faces[c].empty()) {
-            add_polyhedron(g, kind == CellKind::boundary, faces[c], polygons, p3.data(), scratch_points, scratch_cycle);
+            add_polyhedron(g, kind == CellKind::boundary ? 1 : domains_of(3, c), faces[c], polygons, p3.data(),
+                           scratch_points, scratch_cycle);
           } else {
             ++counts.skipped;
           }
       }
       for (std::uint32_t c = n2; m == 3 && c < polygons.size(); ++c) {
         if (!polygons[c].empty()) {
-          add_polygon(true, polygons[c]);
+          add_polygon(1, polygons[c]);
         } else {
           ++counts.skipped;
         }
       }
+      add_strata(&polygons);
     }
   }
   counts.cells = g.types.size();
 
   std::vector<std::uint8_t> on_boundary(nv, 0);
   std::fill(on_boundary.begin() + n0, on_boundary.end(), 1);
+  for (std::uint32_t v = 0; cc.stratified() && v < n0; ++v) on_boundary[v] = cc.interior[0].domains[v] != 0;
   std::vector<Block> point_data, cell_data, points, cells;
   point_data.push_back(block(R"(<DataArray type="UInt8" Name="on_boundary" format="appended")", on_boundary));
   if (projection.changes_points)
@@ -204,6 +234,7 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
                                xs));
   cell_data.push_back(block(R"(<DataArray type="UInt8" Name="dimension" format="appended")", g.dimension));
   cell_data.push_back(block(R"(<DataArray type="UInt8" Name="is_boundary" format="appended")", g.is_boundary));
+  cell_data.push_back(block(R"(<DataArray type="UInt64" Name="domains" format="appended")", g.domains));
   points.push_back(block(R"(<DataArray type="Float64" Name="Points" NumberOfComponents="3" format="appended")", p3));
   cells.push_back(
       block(R"(<DataArray type=")" + index_type + R"(" Name="connectivity" format="appended")", g.connectivity));

@@ -69,10 +69,20 @@ void check_format(MeshFormat format, int d, int m, const WriteOptions& options) 
                      std::to_string(m) + "-manifold");
 }
 
+// (The other writers take a boundary from the boundary levels, which a stratified complex leaves empty.)
+void check_stratified_format(MeshFormat format, int m) {
+  const bool polygons = format == MeshFormat::off || format == MeshFormat::noff || format == MeshFormat::ply ||
+                        format == MeshFormat::obj || format == MeshFormat::stl;
+  if (format != MeshFormat::vtu && format != MeshFormat::cxm && !(polygons && m == 2))
+    throw InputError(std::string(format_name(format)) + " cannot hold this manifold with corners (several domains): " +
+                     "use .vtu or .cxm" + (m == 2 ? ", .off, .ply, .obj or .stl" : ""));
+}
+
 WrittenCounts write_mesh(const std::string& path, MeshFormat format, const CellComplex& cc,
                          const WriteOptions& options) {
   const int d = cc.ambient_dimension, m = cc.manifold_dimension;
   check_format(format, d, m, options);
+  if (cc.stratified()) check_stratified_format(format, m);
   if (format == MeshFormat::cxm) {
     write_file_atomically(path, [&](std::ostream& os) { write_native(os, cc, options.native); });
     std::size_t cells = 0;

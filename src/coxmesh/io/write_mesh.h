@@ -37,6 +37,9 @@ struct WriteOptions {
 /// Whether `format` can hold an m-manifold in R^d with these options (the checks write_mesh makes
 /// first, for a front end to make before tracing). Throws InputError saying why not.
 void check_format(MeshFormat format, int d, int m, const WriteOptions& options);
+/// Throws InputError unless the format can hold a manifold with corners (a stratified complex):
+/// .vtu and .cxm always (they mark the strata), the polygon formats for surfaces. write_mesh checks it.
+void check_stratified_format(MeshFormat format, int m);
 
 /// Writes the complex to `path` in `format`, atomically. `.off` writes OFF when the points are in
 /// R³ (d = 3, or a --project given) and nOFF otherwise. The projection and the format's needs (m ≥ 2

@@ -8,6 +8,7 @@
 #include "coxmesh/oracle/implicit_oracle.h"
 #include "coxmesh/oracle/regularity.h"
 #include "coxmesh/tracing/seeds.h"
+#include "coxmesh/tracing/trace_strata.h"
 #include "coxmesh/util/parallel_for.h"
 
 namespace coxmesh {
@@ -16,6 +17,18 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+MeshReport finish(MeshReport&& report, const MeshOptions& o, const WhileTopology& while_topology);
+
+constexpr const char* kSingularOnTracedSet =
+    "F's differential is (nearly) singular on the traced set: 0 is not a regular value of F (F is a square, F >= 0, "
+    "or its equations are dependent there); what was meshed is a perturbed level set near F = 0";
+
+// All domain functions as one (their intersection).
+FunctionPtr merged_domain(const ManifoldFunctions& w) {
+  FunctionPtr merged = w.domain;
+  for (const FunctionPtr& face : w.domains) merged = domain_intersection(merged, face);
+  return merged;
+}
 
 }  // namespace
 
@@ -30,7 +43,14 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
   if (box.lo.empty()) box = {std::vector<double>(d, -2.0), std::vector<double>(d, 2.0)};
   FunctionPtr bound = o.bounded_by_box ? box_domain(box) : nullptr;
   const auto with_box = [&bound](FunctionPtr domain) { return bound ? domain_intersection(domain, bound) : domain; };
-  const FunctionPtr domain = with_box(first.domain);
+  // Each domain function its own face (a manifold with corners) when there are several.
+  std::vector<FunctionPtr> faces;
+  if (first.domain) faces.push_back(first.domain);
+  faces.insert(faces.end(), first.domains.begin(), first.domains.end());
+  const bool stratified = faces.size() >= 2;
+  const FunctionPtr domain = with_box(merged_domain(first));  // (seeds are searched in all of them)
+  if (stratified && bound) faces.push_back(bound);
+  if (stratified && o.refine) throw InputError("refining the vertices of a manifold with corners is not supported");
 
   MeshReport report;
   SeedChoice seeds;
@@ -54,6 +74,28 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
   if (memory_binds) trace.max_simplices = std::max<std::uint64_t>(by_memory, 1);
 
   const auto t0 = Clock::now();
+  if (stratified) {
+    StratifiedOracle oracle(t, f, faces);
+    StrataTraceResult traced = trace_strata(t, oracle, seeds.seeds, trace);
+    report.trace_seconds = seconds_since(t0);
+    if (traced.vertex_cells.size() == 0)
+      throw InputError("no simplex near the " + std::to_string(seeds.seeds.size()) +
+                       " seeds meets the manifold inside the domains: the triangulation is too coarse for it (give "
+                       "a smaller edge length)");
+    report.status = traced.status;
+    report.message = traced.message;
+    report.function_evaluations = traced.function_evaluations;
+    report.oracle_calls = traced.oracle_calls;
+    if (o.on_phase) o.on_phase("building the cell complex");
+    const auto t1 = Clock::now();
+    report.cells = build_stratified_cell_complex(std::move(traced));
+    report.cell_complex_seconds = seconds_since(t1);
+    const ImplicitFunction* f_only[] = {f.get()};
+    const PointArray& xs = report.cells.vertices;
+    if (o.check_regularity && singular_on(f_only, {xs.data(), xs.size()}, t.longest_edge()))
+      report.warnings.push_back(kSingularOnTracedSet);
+    return finish(std::move(report), o, while_topology);
+  }
   // Several workers share the vertex values (F once per vertex in all), each with its own functions.
   const auto shared = trace.threads > 1 ? ImplicitOracle::make_shared_values(t, f, domain) : nullptr;
   bool first_worker = true;
@@ -65,7 +107,7 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
           return std::make_unique<ImplicitOracle>(t, f, domain, shared);
         }
         const ManifoldFunctions w = make();
-        return std::make_unique<ImplicitOracle>(t, w.f, with_box(w.domain), shared);
+        return std::make_unique<ImplicitOracle>(t, w.f, with_box(merged_domain(w)), shared);
       },
       seeds.seeds, trace);
   report.trace_seconds = seconds_since(t0);
@@ -97,10 +139,7 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
   // The exact rule meshes a perturbed level set where F = 0 is not a regular level: say so.
   const CellComplex& cc = report.cells;
   if (o.check_regularity && singular_on(f_only, {cc.vertices.data(), cc.vertices.size()}, h))
-    report.warnings.push_back(
-        "F's differential is (nearly) singular on the traced set: 0 is not a regular value of F (F is a square, F >= "
-        "0, "
-        "or its equations are dependent there); what was meshed is a perturbed level set near F = 0");
+    report.warnings.push_back(kSingularOnTracedSet);
   if (o.check_regularity && domain) {
     const ImplicitFunction* f_and_domain[] = {f.get(), domain.get()};
     if (singular_on(f_and_domain, {cc.boundary_vertices.data(), cc.boundary_vertices.size()}, h))
@@ -118,11 +157,19 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
         [&]() -> std::pair<FunctionPtr, FunctionPtr> {
           if (first_refiner) return first_refiner = false, std::pair<FunctionPtr, FunctionPtr>{f, domain};
           const ManifoldFunctions w = make();
-          return {w.f, with_box(w.domain)};
+          return {w.f, with_box(merged_domain(w))};
         },
         ro);
   }
 
+  return finish(std::move(report), o, while_topology);
+}
+
+namespace {
+
+// The topology, beside while_topology when there are several threads.
+MeshReport finish(MeshReport&& report, const MeshOptions& o, const WhileTopology& while_topology) {
+  const TraceOptions& trace = o.trace;
   auto topology = [&report] {
     const auto t2 = Clock::now();
     report.topology = analyze_topology(report.cells);
@@ -152,7 +199,9 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
     worker.join();
     if (failed) std::rethrow_exception(failed);
   }
-  return report;
+  return std::move(report);
 }
+
+}  // namespace
 
 }  // namespace coxmesh

@@ -17,9 +17,14 @@
 
 namespace coxmesh {
 
-/// M = F⁻¹(0) ∩ {D < 0}: F: R^d → R^k and the domain D (null: none).
+/// M = F⁻¹(0) ∩ {D < 0}: F: R^d → R^k and the domain D (null: none). With `domains`, each of
+/// them (after `domain`, if any) bounds M with its own face: M ∩ {D_1 < 0, …, D_p < 0} is then a
+/// manifold with corners whose strata are traced one by one (trace_strata.h) when p ≥ 2.
 struct ManifoldFunctions {
+  ManifoldFunctions(FunctionPtr f_ = nullptr, FunctionPtr domain_ = nullptr, std::vector<FunctionPtr> domains_ = {})
+      : f(std::move(f_)), domain(std::move(domain_)), domains(std::move(domains_)) {}
   FunctionPtr f, domain;
+  std::vector<FunctionPtr> domains;
 };
 /// Makes the functions once per worker thread: a function that is not thread-safe (an expression
 /// typed as text) must come fresh each time; thread-safe ones may be the same objects every time.
@@ -58,11 +63,11 @@ struct MeshReport {
   std::optional<RefinementReport> refinement;  ///< with options.refine
 };
 
-/// Meshes M on the triangulation t: seeds (given, F's own, or searched in the box), the walk from
-/// them with options.trace.threads workers (F once per lattice vertex in all), the cell complex,
-/// with options.refine the vertices moved onto M (refine_vertices; the domain includes the box when
-/// it bounds the walk), and the topology (none when the run was stopped by a limit: the complex is
-/// then open).
+/// Meshes M on the triangulation t (several domain functions: a stratified complex, cell_complex.h,
+/// traced on one thread, a box bounding the walk being one more domain, last; no refinement): seeds (given, F's own, or
+/// searched in the box), the walk from them with options.trace.threads workers (F once per lattice vertex in all), the
+/// cell complex, with options.refine the vertices moved onto M (refine_vertices; the domain includes the box when it
+/// bounds the walk), and the topology (none when the run was stopped by a limit: the complex is then open).
 ///   Throws InputError when no seed is found or none reaches M (saying whether F is not finite, or
 ///   its differential singular, there), SeedError, EvaluationError.
 ///
