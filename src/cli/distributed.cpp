@@ -1,11 +1,13 @@
 #include "distributed.h"
 
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <limits>
 #include <memory>
 #include <string>
+#include <thread>
 
 #include "common.h"
 #include "coxmesh/mesh/mesh_distributed.h"
@@ -117,9 +119,13 @@ class MpiCommunicator final : public Communicator {
     return all;
   }
 
+  // (the other ranks wait here while rank 0 builds the mesh: asleep, not spinning on a core that
+  // rank 0 may need)
   void broadcast(std::vector<std::byte>& bytes) override {
     std::uint64_t n = bytes.size();
-    MPI_Bcast(&n, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+    MPI_Request request;
+    MPI_Ibcast(&n, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD, &request);
+    wait_asleep(request);
     bytes.resize(n);
     MPI_Bcast(bytes.data(), checked_int(n), MPI_BYTE, 0, MPI_COMM_WORLD);
     if (rank_ == 0) bytes_sent_ += n * (size_ - 1);
@@ -130,6 +136,15 @@ class MpiCommunicator final : public Communicator {
   }
 
  private:
+  static void wait_asleep(MPI_Request& request) {
+    for (int done = 0, pause_us = 50;;) {
+      MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+      if (done) return;
+      std::this_thread::sleep_for(std::chrono::microseconds(pause_us));
+      pause_us = std::min(2 * pause_us, 5000);
+    }
+  }
+
   int rank_ = 0, size_ = 1;
 };
 
@@ -206,7 +221,8 @@ int run_distributed_guarded(Communicator& comm, const std::function<void()>& bod
 void print_distributed_stats(std::ostream& out, const DistributedTraceStats& s, std::size_t traced) {
   out << "coxmesh: " << s.ranks << " processes: " << s.levels << " levels, " << s.bytes_sent << " bytes exchanged ("
       << (traced ? s.bytes_sent / traced : 0) << " per traced simplex), " << s.candidates_sent << " simplices and "
-      << s.vertex_values_sent << " vertex values sent to their owners\n";
+      << s.vertex_values_sent << " vertex values sent to their owners; the largest share " << s.largest_share << " of "
+      << traced << " simplices\n";
 }
 
 }  // namespace coxmesh::cli

@@ -24,11 +24,12 @@ struct DistributedTraceStats {
   std::uint64_t bytes_sent = 0;          ///< between ranks, the final gather included
   std::uint64_t vertex_values_sent = 0;  ///< F values sent to ranks that do not own the vertex
   std::uint64_t candidates_sent = 0;     ///< transverse simplices sent to their owner
+  std::uint64_t largest_share = 0;       ///< the most simplices of S one rank owns
 };
 
 /// The rank that owns lattice vertex v: a hash of its block of 2^(d·kOwnerBlockBits) lattice vertices, so
 /// that neighbours mostly share an owner. A simplex belongs to the owner of its minimal vertex.
-inline constexpr int kOwnerBlockBits = 3;
+inline constexpr int kOwnerBlockBits = 2;
 int owner_rank(const std::int32_t* v, int d, int ranks);
 
 /// trace_manifold(T, oracle, seeds, options) split between the ranks of `comm`; every rank calls it

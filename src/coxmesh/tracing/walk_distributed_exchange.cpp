@@ -255,7 +255,18 @@ TraceResult DistributedWalk::finish(DistributedTraceStats* stats) {
   std::uint64_t sums[] = {calls_, evaluations_ + oracle_.function_evaluations(), comm_.bytes_sent(),
                           vertex_values_sent_, candidates_sent_};
   comm_.sum(sums, 5);
-  if (stats) *stats = {ranks_, levels_, sums[2], sums[3], sums[4]};
+  // The largest share of S (the balance of the split by lattice blocks).
+  std::vector<std::byte> share;
+  const std::uint64_t owned = mine_.size();
+  put(share, &owned, 1);
+  const std::vector<std::byte> shares = comm_.all_gather(share, counts);
+  std::uint64_t largest = 0;
+  for (int r = 0; r < ranks_; ++r) {
+    std::uint64_t x;
+    std::memcpy(&x, shares.data() + r * sizeof x, sizeof x);
+    largest = std::max(largest, x);
+  }
+  if (stats) *stats = {ranks_, levels_, sums[2], sums[3], sums[4], largest};
 
   TraceResult result;
   result.ambient_dimension = d_;
