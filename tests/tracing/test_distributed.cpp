@@ -141,7 +141,8 @@ TEST(DistributedTracing, IdenticalForEveryNumberOfRanks) {
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
-    const std::vector<std::vector<double>> seeds = c.seeds.empty() ? std::vector{c.f->seed()} : c.seeds;
+    const std::vector<std::vector<double>> seeds =
+        c.seeds.empty() ? std::vector<std::vector<double>>{c.f->seed()} : c.seeds;
     ImplicitOracle oracle(c.t, c.f, c.domain);
     TraceOptions options;
     options.max_simplices = c.max_simplices;

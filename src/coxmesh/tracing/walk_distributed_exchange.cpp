@@ -322,15 +322,42 @@ TraceResult trace_manifold_distributed(const Triangulation& triangulation, Inter
     throw InputError("the oracle works in R^" + std::to_string(oracle.ambient_dimension()) +
                      " but the triangulation is of R^" + std::to_string(triangulation.dimension()));
   if (seeds.empty()) throw SeedError("no seed given");
-  walk::DistributedWalk walk(triangulation, oracle, values, evaluate, options, comm);
-  for (const auto& seed : seeds) {
+  // Rank 0's seeds and limits for all: a default derived from a node's memory must not make the
+  // ranks of different nodes stop at different levels.
+  TraceOptions agreed = options;
+  std::vector<std::vector<double>> agreed_seeds;
+  {
+    std::vector<std::byte> bytes;
+    const std::uint64_t header[] = {options.max_simplices, static_cast<std::uint64_t>(options.seed_search_rings),
+                                    options.skip_unusable_seeds ? 1u : 0u, seeds.size()};
+    walk::put(bytes, header, 4);
+    for (const auto& seed : seeds) {
+      const std::uint64_t n = seed.size();
+      walk::put(bytes, &n, 1);
+      walk::put(bytes, seed.data(), seed.size());
+    }
+    comm.broadcast(bytes);
+    const std::byte* in = bytes.data();
+    std::uint64_t h[4];
+    walk::take(in, h, 4);
+    agreed.max_simplices = h[0], agreed.seed_search_rings = static_cast<int>(h[1]), agreed.skip_unusable_seeds = h[2];
+    agreed_seeds.resize(h[3]);
+    for (auto& seed : agreed_seeds) {
+      std::uint64_t n;
+      walk::take(in, &n, 1);
+      seed.resize(n);
+      walk::take(in, seed.data(), n);
+    }
+  }
+  walk::DistributedWalk walk(triangulation, oracle, values, evaluate, agreed, comm);
+  for (const auto& seed : agreed_seeds) {
     if (walk.stopped()) break;
-    walk.add_seed(seed, !options.skip_unusable_seeds);
+    walk.add_seed(seed, !agreed.skip_unusable_seeds);
     walk.walk();
   }
   TraceResult result = walk.finish(stats);
   if (result.status == TraceStatus::max_simplices_reached)
-    result.message = "stopped at the limit of " + std::to_string(options.max_simplices) +
+    result.message = "stopped at the limit of " + std::to_string(agreed.max_simplices) +
                      " simplices; the manifold may be unbounded (give a domain or a box) or the scale too fine";
   return result;
 }
