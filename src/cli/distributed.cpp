@@ -46,7 +46,9 @@ class MpiCommunicator final : public Communicator {
                                   std::vector<std::size_t>& counts) override {
     std::vector<std::uint64_t> out_counts(size_), in_counts(size_);
     for (int r = 0; r < size_; ++r) out_counts[r] = outgoing[r].size();
-    MPI_Alltoall(out_counts.data(), 1, MPI_UINT64_T, in_counts.data(), 1, MPI_UINT64_T, MPI_COMM_WORLD);
+    MPI_Request request;
+    MPI_Ialltoall(out_counts.data(), 1, MPI_UINT64_T, in_counts.data(), 1, MPI_UINT64_T, MPI_COMM_WORLD, &request);
+    wait(request);
     std::vector<int> send_counts(size_), send_at(size_), receive_counts(size_), receive_at(size_);
     std::vector<std::byte> send;
     std::size_t received = 0;
@@ -70,7 +72,9 @@ class MpiCommunicator final : public Communicator {
   std::vector<std::byte> all_gather(const std::vector<std::byte>& mine, std::vector<std::size_t>& counts) override {
     std::uint64_t n = mine.size();
     std::vector<std::uint64_t> all_counts(size_);
-    MPI_Allgather(&n, 1, MPI_UINT64_T, all_counts.data(), 1, MPI_UINT64_T, MPI_COMM_WORLD);
+    MPI_Request request;
+    MPI_Iallgather(&n, 1, MPI_UINT64_T, all_counts.data(), 1, MPI_UINT64_T, MPI_COMM_WORLD, &request);
+    wait(request);
     std::vector<int> receive_counts(size_), receive_at(size_);
     std::size_t total = 0;
     for (int r = 0; r < size_; ++r) {
@@ -92,7 +96,9 @@ class MpiCommunicator final : public Communicator {
     constexpr std::size_t kPiece = std::size_t{1} << 30;
     std::uint64_t n = mine.size();
     std::vector<std::uint64_t> all_counts(size_);
-    MPI_Gather(&n, 1, MPI_UINT64_T, all_counts.data(), 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+    MPI_Request request;
+    MPI_Igather(&n, 1, MPI_UINT64_T, all_counts.data(), 1, MPI_UINT64_T, 0, MPI_COMM_WORLD, &request);
+    wait(request);
     if (rank_ != 0) {
       for (std::size_t at = 0; at < mine.size(); at += kPiece)
         MPI_Send(mine.data() + at, static_cast<int>(std::min(kPiece, mine.size() - at)), MPI_BYTE, 0, 1,
@@ -119,29 +125,34 @@ class MpiCommunicator final : public Communicator {
     return all;
   }
 
-  // (the other ranks wait here while rank 0 builds the mesh: asleep, not spinning on a core that
-  // rank 0 may need)
   void broadcast(std::vector<std::byte>& bytes) override {
     std::uint64_t n = bytes.size();
     MPI_Request request;
     MPI_Ibcast(&n, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD, &request);
-    wait_asleep(request);
+    wait(request);
     bytes.resize(n);
     MPI_Bcast(bytes.data(), checked_int(n), MPI_BYTE, 0, MPI_COMM_WORLD);
     if (rank_ == 0) bytes_sent_ += n * (size_ - 1);
   }
 
   void sum(std::uint64_t* values, int n) override {
-    MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+    MPI_Request request;
+    MPI_Iallreduce(MPI_IN_PLACE, values, n, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD, &request);
+    wait(request);
   }
 
  private:
-  static void wait_asleep(MPI_Request& request) {
-    for (int done = 0, pause_us = 50;;) {
-      MPI_Test(&request, &done, MPI_STATUS_IGNORE);
-      if (done) return;
+  // The first step of each collective, where a rank waits for the slowest: polled for a while (the
+  // others are usually close), then asleep between polls, so that a waiting rank does not take the
+  // core of a working one (or, after the walk, rank 0's while it builds the mesh).
+  static void wait(MPI_Request& request) {
+    const auto start = std::chrono::steady_clock::now();
+    int done = 0;
+    while (MPI_Test(&request, &done, MPI_STATUS_IGNORE), !done)
+      if (std::chrono::steady_clock::now() - start > std::chrono::microseconds(200)) break;
+    for (int pause_us = 20; !done; pause_us = std::min(2 * pause_us, 2000)) {
       std::this_thread::sleep_for(std::chrono::microseconds(pause_us));
-      pause_us = std::min(2 * pause_us, 5000);
+      MPI_Test(&request, &done, MPI_STATUS_IGNORE);
     }
   }
 
