@@ -233,7 +233,7 @@ void print_distributed_stats(std::ostream& out, const DistributedTraceStats& s, 
   out << "coxmesh: " << s.ranks << " processes: " << s.levels << " levels, " << s.bytes_sent << " bytes exchanged ("
       << (traced ? s.bytes_sent / traced : 0) << " per traced simplex), " << s.candidates_sent << " simplices and "
       << s.vertex_values_sent << " vertex values sent to their owners; the largest share " << s.largest_share << " of "
-      << traced << " simplices\n";
+      << traced << " simplices; " << s.oracle_tests << " oracle tests in all\n";
 }
 
 }  // namespace coxmesh::cli

@@ -25,6 +25,7 @@ struct DistributedTraceStats {
   std::uint64_t vertex_values_sent = 0;  ///< F values sent to ranks that do not own the vertex
   std::uint64_t candidates_sent = 0;     ///< transverse simplices sent to their owner
   std::uint64_t largest_share = 0;       ///< the most simplices of S one rank owns
+  std::uint64_t oracle_tests = 0;        ///< simplices tested, counted on every rank that tested them
 };
 
 /// The rank that owns lattice vertex v: a hash of its block of 2^(d·kOwnerBlockBits) lattice vertices, so

@@ -78,6 +78,7 @@ Found DistributedWalk::test(const std::uint32_t* key, std::uint64_t hash, const 
                             std::uint32_t known) {
   const bool owned = owner == rank_;
   if (owned && known == PackedKeyIndex::kAbsent) ++calls_;
+  ++tests_;
   const Intersection x = oracle_.intersect(tau, point_.data());
   if (x.hit && x.domain < 0) {
     std::memcpy(fresh_key_, key, sizeof(std::uint32_t) * words_);

@@ -90,7 +90,7 @@ class DistributedWalk {
   std::size_t fresh_at_ = 0;  // where its arrival code goes (next_ id, or byte offset in candidates_out_)
   std::uint32_t fresh_key_[packed_words(kMaxDimension)];
   std::vector<double> point_;
-  std::uint64_t calls_ = 0, evaluations_ = 0, vertex_values_sent_ = 0, candidates_sent_ = 0, levels_ = 0;
+  std::uint64_t calls_ = 0, tests_ = 0, evaluations_ = 0, vertex_values_sent_ = 0, candidates_sent_ = 0, levels_ = 0;
   std::size_t last_progress_ = 0;
   bool stopped_ = false;
 };

@@ -252,9 +252,10 @@ TraceResult DistributedWalk::finish(DistributedTraceStats* stats) {
   std::vector<std::size_t> counts;
   const std::vector<std::byte> all_simplices = comm_.gather_to_root(simplices, counts);
   const std::vector<std::byte> all_boundary = comm_.gather_to_root(boundary, counts);
-  std::uint64_t sums[] = {calls_, evaluations_ + oracle_.function_evaluations(), comm_.bytes_sent(),
-                          vertex_values_sent_, candidates_sent_};
-  comm_.sum(sums, 5);
+  std::uint64_t sums[] = {
+      calls_, evaluations_ + oracle_.function_evaluations(), comm_.bytes_sent(), vertex_values_sent_, candidates_sent_,
+      tests_};
+  comm_.sum(sums, 6);
   // The largest share of S (the balance of the split by lattice blocks).
   std::vector<std::byte> share;
   const std::uint64_t owned = mine_.size();
@@ -266,7 +267,7 @@ TraceResult DistributedWalk::finish(DistributedTraceStats* stats) {
     std::memcpy(&x, shares.data() + r * sizeof x, sizeof x);
     largest = std::max(largest, x);
   }
-  if (stats) *stats = {ranks_, levels_, sums[2], sums[3], sums[4], largest};
+  if (stats) *stats = {ranks_, levels_, sums[2], sums[3], sums[4], largest, sums[5]};
 
   TraceResult result;
   result.ambient_dimension = d_;
