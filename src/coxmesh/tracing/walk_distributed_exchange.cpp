@@ -14,7 +14,8 @@ namespace coxmesh {
 int owner_rank(const std::int32_t* v, int d, int ranks) {
   if (ranks == 1) return 0;
   std::uint32_t block[kMaxDimension];
-  for (int i = 0; i < d; ++i) block[i] = static_cast<std::uint32_t>(v[i] >> kOwnerBlockBits);  // (floor)
+  const int bits = owner_block_bits(d);
+  for (int i = 0; i < d; ++i) block[i] = static_cast<std::uint32_t>(v[i] >> bits);  // (floor)
   return static_cast<int>(hash_words(block, d) % static_cast<std::uint64_t>(ranks));
 }
 
