@@ -12,12 +12,13 @@ mode=cli
 case "${1:-}" in --all) mode=all; shift ;; --python) mode=python; shift ;; esac
 
 packages=(g++ cmake make libeigen3-dev libcli11-dev nlohmann-json3-dev libmuparser-dev libboost-dev libphat-dev
-          libnanoflann-dev)
+          libnanoflann-dev libopenmpi-dev)  # (MPI: `mpirun coxmesh trace`; -DCOXMESH_MPI=OFF builds without it)
 python_packages=(pybind11-dev python3-dev python3-numpy python3-pytest)  # the Python package and its tests
 # python3-vtk9: the VTU read-back test uses VTK's own reader; libcgal-demo: real point clouds
 test_packages=(libgtest-dev libgmock-dev libbenchmark-dev libgudhi-dev python3-vtk9 libcgal-demo
                clang libclang-rt-14-dev  # clang's libFuzzer: the fuzz targets (fuzz/run.sh)
-               clang-format)  # the format test
+               clang-format  # the format test
+               openmpi-bin)  # mpirun: the test of several processes
 configure=(-DCMAKE_BUILD_TYPE=Release) target=()
 case $mode in
   cli) configure+=(-DCOXMESH_TESTS=OFF -DCOXMESH_BENCHMARKS=OFF -DCOXMESH_PYTHON=OFF); target=(--target coxmesh) ;;

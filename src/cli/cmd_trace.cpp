@@ -10,11 +10,13 @@
 #include "common.h"
 #include "coxmesh/io/atomic_file.h"
 #include "coxmesh/io/write_mesh.h"
+#include "coxmesh/mesh/mesh_distributed.h"
 #include "coxmesh/mesh/mesh_manifold.h"
 #include "coxmesh/mesh/mesh_winding.h"
 #include "coxmesh/oracle/expression_function.h"
 #include "coxmesh/oracle/presets.h"
 #include "coxmesh/oracle/stratified_oracle.h"
+#include "distributed.h"
 #include "points.h"
 #include "progress.h"
 #include "report.h"
@@ -213,8 +215,17 @@ void run(TraceCliOptions o) {
     mo.check_regularity = false;  // (samples have their own diagnostics)
   }
 
+  // Under mpirun the walk is split between the processes and rank 0 reports (distributed.h).
+  Communicator* const comm = MpiSession::communicator();
+  DistributedTraceStats distributed;
+  if (comm) {
+    if (cloud) throw InputError("point clouds are not traced by several processes yet: run without mpirun");
+    if (problem.domains.size() + (problem.domain ? 1 : 0) >= 2)
+      throw InputError("manifolds with corners are not traced by several processes yet: run without mpirun");
+    mo.tracer = distributed_tracer(*comm, &distributed);
+  }
   std::optional<ProgressDisplay> progress;
-  if (!o.json && !o.quiet) {
+  if (!o.json && !o.quiet && (!comm || comm->rank() == 0)) {
     progress.emplace();
     mo.trace.progress = [&progress](std::size_t traced) { progress->traced(traced); };
     mo.on_phase = [&progress](const std::string& phase) { progress->phase(phase); };
@@ -284,6 +295,7 @@ void run(TraceCliOptions o) {
     print_trace_json(out, summary);
   else if (!o.quiet)
     print_trace_lines(out, summary);
+  if (comm && !o.quiet) print_distributed_stats(std::cerr, distributed, report.cells.interior[0].size());
 }
 
 }  // namespace
@@ -356,7 +368,11 @@ void register_trace(CLI::App& app, int& status) {
   cmd->add_flag("--no-output", o->no_output, "write no file");
   cmd->add_flag("--json", o->json, "print the summary as JSON (and write a file only with -o)");
   cmd->add_flag("-q,--quiet", o->quiet, "print nothing but errors");
-  cmd->callback([o, &status] { status = run_guarded([&] { run(*o); }); });
+  cmd->callback([o, &status] {
+    const auto body = [&] { run(*o); };
+    Communicator* const comm = MpiSession::communicator();
+    status = comm ? run_distributed_guarded(*comm, body) : run_guarded(body);
+  });
 
   CLI::App* presets = app.add_subcommand("presets", "list the built-in manifolds");
   presets->callback([&status] {

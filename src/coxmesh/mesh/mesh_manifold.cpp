@@ -99,17 +99,21 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
   // Several workers share the vertex values (F once per vertex in all), each with its own functions.
   const auto shared = trace.threads > 1 ? ImplicitOracle::make_shared_values(t, f, domain) : nullptr;
   bool first_worker = true;
-  TraceResult traced = trace_manifold(
-      t,
-      [&]() -> std::unique_ptr<IntersectionOracle> {
-        if (first_worker) {
-          first_worker = false;
-          return std::make_unique<ImplicitOracle>(t, f, domain, shared);
-        }
-        const ManifoldFunctions w = make();
-        return std::make_unique<ImplicitOracle>(t, w.f, with_box(merged_domain(w)), shared);
-      },
-      seeds.seeds, trace);
+  TraceResult traced;
+  if (o.tracer)
+    traced = o.tracer(t, {f, domain}, seeds.seeds, trace);
+  else
+    traced = trace_manifold(
+        t,
+        [&]() -> std::unique_ptr<IntersectionOracle> {
+          if (first_worker) {
+            first_worker = false;
+            return std::make_unique<ImplicitOracle>(t, f, domain, shared);
+          }
+          const ManifoldFunctions w = make();
+          return std::make_unique<ImplicitOracle>(t, w.f, with_box(merged_domain(w)), shared);
+        },
+        seeds.seeds, trace);
   report.trace_seconds = seconds_since(t0);
   const double h = t.longest_edge();
   const ImplicitFunction* f_only[] = {f.get()};

@@ -29,6 +29,10 @@ struct ManifoldFunctions {
 /// Makes the functions once per worker thread: a function that is not thread-safe (an expression
 /// typed as text) must come fresh each time; thread-safe ones may be the same objects every time.
 using ManifoldMaker = std::function<ManifoldFunctions()>;
+/// A walk in place of trace_manifold, e.g. one split between processes (mesh_distributed.h): it
+/// gets F and D (the box included), the seeds and the trace options.
+using Tracer = std::function<TraceResult(const Triangulation&, const ManifoldFunctions&,
+                                         const std::vector<std::vector<double>>& seeds, const TraceOptions&)>;
 
 struct MeshOptions {
   std::vector<std::vector<double>> seeds;  ///< points near M, d coordinates each
@@ -43,6 +47,7 @@ struct MeshOptions {
   /// is set when seeds were found automatically.
   TraceOptions trace;
   std::function<void(const std::string& phase)> on_phase;  ///< "building the cell complex", …
+  Tracer tracer;                                           ///< replaces trace_manifold when set
 };
 
 struct MeshReport;

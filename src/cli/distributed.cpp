@@ -1,0 +1,239 @@
+#include "distributed.h"
+
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "common.h"
+#include "coxmesh/mesh/mesh_distributed.h"
+
+#ifdef COXMESH_MPI
+#include <mpi.h>
+#endif
+
+namespace coxmesh::cli {
+
+namespace {
+
+#ifdef COXMESH_MPI
+[[noreturn]] void abort_job(const std::string& message) {
+  std::cerr << "coxmesh: error: " << message << "\n";
+  MPI_Abort(MPI_COMM_WORLD, 1);
+  std::abort();
+}
+
+int checked_int(std::size_t n) {
+  if (n > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+    abort_job("more than 2 GiB in one message between processes: use more processes or a coarser triangulation");
+  return static_cast<int>(n);
+}
+
+class MpiCommunicator final : public Communicator {
+ public:
+  MpiCommunicator() {
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+    MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  }
+  int rank() const override { return rank_; }
+  int size() const override { return size_; }
+
+  std::vector<std::byte> exchange(const std::vector<std::vector<std::byte>>& outgoing,
+                                  std::vector<std::size_t>& counts) override {
+    std::vector<std::uint64_t> out_counts(size_), in_counts(size_);
+    for (int r = 0; r < size_; ++r) out_counts[r] = outgoing[r].size();
+    MPI_Request request;
+    MPI_Ialltoall(out_counts.data(), 1, MPI_UINT64_T, in_counts.data(), 1, MPI_UINT64_T, MPI_COMM_WORLD, &request);
+    wait(request);
+    std::vector<int> send_counts(size_), send_at(size_), receive_counts(size_), receive_at(size_);
+    std::vector<std::byte> send;
+    std::size_t received = 0;
+    for (int r = 0; r < size_; ++r) {
+      send_at[r] = checked_int(send.size());
+      send_counts[r] = checked_int(outgoing[r].size());
+      send.insert(send.end(), outgoing[r].begin(), outgoing[r].end());
+      if (r != rank_) bytes_sent_ += outgoing[r].size();
+      receive_at[r] = checked_int(received);
+      receive_counts[r] = checked_int(in_counts[r]);
+      received += in_counts[r];
+    }
+    checked_int(received);
+    std::vector<std::byte> in(received);
+    MPI_Alltoallv(send.data(), send_counts.data(), send_at.data(), MPI_BYTE, in.data(), receive_counts.data(),
+                  receive_at.data(), MPI_BYTE, MPI_COMM_WORLD);
+    counts.assign(in_counts.begin(), in_counts.end());
+    return in;
+  }
+
+  std::vector<std::byte> all_gather(const std::vector<std::byte>& mine, std::vector<std::size_t>& counts) override {
+    std::uint64_t n = mine.size();
+    std::vector<std::uint64_t> all_counts(size_);
+    MPI_Request request;
+    MPI_Iallgather(&n, 1, MPI_UINT64_T, all_counts.data(), 1, MPI_UINT64_T, MPI_COMM_WORLD, &request);
+    wait(request);
+    std::vector<int> receive_counts(size_), receive_at(size_);
+    std::size_t total = 0;
+    for (int r = 0; r < size_; ++r) {
+      receive_at[r] = checked_int(total);
+      receive_counts[r] = checked_int(all_counts[r]);
+      total += all_counts[r];
+    }
+    checked_int(total);
+    bytes_sent_ += mine.size() * (size_ - 1);
+    std::vector<std::byte> all(total);
+    MPI_Allgatherv(mine.data(), checked_int(mine.size()), MPI_BYTE, all.data(), receive_counts.data(),
+                   receive_at.data(), MPI_BYTE, MPI_COMM_WORLD);
+    counts.assign(all_counts.begin(), all_counts.end());
+    return all;
+  }
+
+  // Point to point in pieces of at most 1 GiB: rank 0 may receive more than an int counts.
+  std::vector<std::byte> gather_to_root(const std::vector<std::byte>& mine, std::vector<std::size_t>& counts) override {
+    constexpr std::size_t kPiece = std::size_t{1} << 30;
+    std::uint64_t n = mine.size();
+    std::vector<std::uint64_t> all_counts(size_);
+    MPI_Request request;
+    MPI_Igather(&n, 1, MPI_UINT64_T, all_counts.data(), 1, MPI_UINT64_T, 0, MPI_COMM_WORLD, &request);
+    wait(request);
+    if (rank_ != 0) {
+      for (std::size_t at = 0; at < mine.size(); at += kPiece)
+        MPI_Send(mine.data() + at, static_cast<int>(std::min(kPiece, mine.size() - at)), MPI_BYTE, 0, 1,
+                 MPI_COMM_WORLD);
+      bytes_sent_ += mine.size();
+      counts.clear();
+      return {};
+    }
+    std::size_t total = 0;
+    for (const std::uint64_t c : all_counts) total += c;
+    std::vector<std::byte> all(total);
+    std::size_t at = 0;
+    for (int r = 0; r < size_; ++r) {
+      if (r == 0) {
+        std::memcpy(all.data(), mine.data(), mine.size());
+      } else {
+        for (std::size_t done = 0; done < all_counts[r]; done += kPiece)
+          MPI_Recv(all.data() + at + done, static_cast<int>(std::min(kPiece, all_counts[r] - done)), MPI_BYTE, r, 1,
+                   MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+      }
+      at += all_counts[r];
+    }
+    counts.assign(all_counts.begin(), all_counts.end());
+    return all;
+  }
+
+  void broadcast(std::vector<std::byte>& bytes) override {
+    std::uint64_t n = bytes.size();
+    MPI_Request request;
+    MPI_Ibcast(&n, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD, &request);
+    wait(request);
+    bytes.resize(n);
+    MPI_Bcast(bytes.data(), checked_int(n), MPI_BYTE, 0, MPI_COMM_WORLD);
+    if (rank_ == 0) bytes_sent_ += n * (size_ - 1);
+  }
+
+  void sum(std::uint64_t* values, int n) override {
+    MPI_Request request;
+    MPI_Iallreduce(MPI_IN_PLACE, values, n, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD, &request);
+    wait(request);
+  }
+
+ private:
+  // The first step of each collective, where a rank waits for the slowest: polled for a while (the
+  // others are usually close), then asleep between polls, so that a waiting rank does not take the
+  // core of a working one (or, after the walk, rank 0's while it builds the mesh).
+  static void wait(MPI_Request& request) {
+    const auto start = std::chrono::steady_clock::now();
+    int done = 0;
+    while (MPI_Test(&request, &done, MPI_STATUS_IGNORE), !done)
+      if (std::chrono::steady_clock::now() - start > std::chrono::microseconds(200)) break;
+    for (int pause_us = 20; !done; pause_us = std::min(2 * pause_us, 2000)) {
+      std::this_thread::sleep_for(std::chrono::microseconds(pause_us));
+      MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+    }
+  }
+
+  int rank_ = 0, size_ = 1;
+};
+
+// A launcher started this process: OpenMPI's mpirun, or a PMI/PMIx one (Slurm's srun, MPICH).
+bool launched_by_mpi() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
+    if (std::getenv(name)) return true;
+  return false;
+}
+#endif
+
+std::unique_ptr<Communicator> session_communicator;
+bool session_initialised = false;
+std::streambuf* error_stream = nullptr;  // std::cerr's, which ranks other than 0 keep for themselves
+
+}  // namespace
+
+MpiSession::MpiSession([[maybe_unused]] int& argc, [[maybe_unused]] char**& argv) {
+#ifdef COXMESH_MPI
+  if (!launched_by_mpi()) return;
+  MPI_Init(&argc, &argv);
+  session_initialised = true;
+  int size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  if (size > 1) session_communicator = std::make_unique<MpiCommunicator>();
+  // Rank 0 speaks for the job (usage errors, progress, the summary): the others are silent.
+  if (session_communicator && session_communicator->rank() != 0) {
+    std::cout.rdbuf(nullptr);
+    error_stream = std::cerr.rdbuf(nullptr);
+  }
+#endif
+}
+
+MpiSession::~MpiSession() {
+  session_communicator.reset();
+  if (error_stream) std::cout.rdbuf(nullptr), std::cerr.rdbuf(error_stream);
+#ifdef COXMESH_MPI
+  if (session_initialised) MPI_Finalize();
+#endif
+}
+
+Communicator* MpiSession::communicator() { return session_communicator.get(); }
+
+// Every rank ends in one broadcast of rank 0's status: rank 0 after reporting, the others after
+// their part of the walk (DistributedPartDone) or after the failure that every rank met at once
+// (errors in the walk are agreed by all ranks; those before it come from the same input).
+int run_distributed_guarded(Communicator& comm, const std::function<void()>& body) {
+  if (comm.rank() == 0) {
+    const int status = run_guarded(body);
+    std::vector<std::byte> outcome{static_cast<std::byte>(status)};
+    comm.broadcast(outcome);
+    return status;
+  }
+  std::string error;
+  try {
+    body();
+  } catch (const DistributedPartDone&) {
+  } catch (const std::bad_alloc&) {
+    error = "out of memory";
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  std::vector<std::byte> outcome;
+  comm.broadcast(outcome);
+  const int status = outcome.empty() ? 1 : static_cast<int>(outcome[0]);
+  if (status == 0 && !error.empty()) {  // (met here only: say it)
+    std::ostream err(error_stream ? error_stream : std::cerr.rdbuf());
+    err << "coxmesh: error: " << printable(error) << "\n";
+    return 1;
+  }
+  return status;
+}
+
+void print_distributed_stats(std::ostream& out, const DistributedTraceStats& s, std::size_t traced) {
+  out << "coxmesh: " << s.ranks << " processes: " << s.levels << " levels, " << s.bytes_sent << " bytes exchanged ("
+      << (traced ? s.bytes_sent / traced : 0) << " per traced simplex), " << s.candidates_sent << " simplices and "
+      << s.vertex_values_sent << " vertex values sent to their owners; the largest share " << s.largest_share << " of "
+      << traced << " simplices; " << s.oracle_tests << " oracle tests in all\n";
+}
+
+}  // namespace coxmesh::cli

@@ -1,0 +1,24 @@
+// mesh_manifold with its walk split between processes: a MeshOptions::tracer over a Communicator
+// (tracing/trace_distributed.h). Rank 0 builds the mesh from the whole result.
+#pragma once
+
+#include "coxmesh/mesh/mesh_manifold.h"
+#include "coxmesh/tracing/trace_distributed.h"
+#include "coxmesh/util/communicator.h"
+
+namespace coxmesh {
+
+/// Thrown by distributed_tracer on the ranks other than 0 once their part of the walk is on rank 0:
+/// they have nothing left to do in mesh_manifold. Not an error (not a std::exception).
+struct DistributedPartDone {};
+
+/// A MeshOptions::tracer: trace_manifold_distributed over `comm`, each rank with an ImplicitOracle
+/// of F and D over its own vertex values. Every rank runs mesh_manifold with the same arguments;
+/// rank 0 gets the result trace_manifold would give, the others throw DistributedPartDone.
+/// `stats`, when given, receives the cost of the walk.
+///
+///   mo.tracer = distributed_tracer(comm);
+///   try { MeshReport r = mesh_manifold(t, make, mo); /* rank 0 */ } catch (const DistributedPartDone&) {}
+Tracer distributed_tracer(Communicator& comm, DistributedTraceStats* stats = nullptr);
+
+}  // namespace coxmesh

@@ -1,0 +1,53 @@
+// Thesis §4.2 over several processes: trace_manifold with S and the lattice split between the
+// ranks of a Communicator (e.g. the processes of mpirun), with the same result.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "coxmesh/oracle/intersection_oracle.h"
+#include "coxmesh/oracle/shared_vertex_values.h"
+#include "coxmesh/tracing/trace_manifold.h"
+#include "coxmesh/triangulation/triangulation.h"
+#include "coxmesh/util/communicator.h"
+
+namespace coxmesh {
+
+/// Writes the values at lattice vertex v that an ImplicitOracle keeps: F's k values, then D's.
+using VertexEvaluator = std::function<void(const std::int32_t* v, double* out)>;
+
+/// What the distributed walk cost, summed over the ranks (for reports and benchmarks).
+struct DistributedTraceStats {
+  int ranks = 1;
+  std::uint64_t levels = 0;              ///< breadth-first levels walked (each one exchange)
+  std::uint64_t bytes_sent = 0;          ///< between ranks, the final gather included
+  std::uint64_t vertex_values_sent = 0;  ///< F values sent to ranks that do not own the vertex
+  std::uint64_t candidates_sent = 0;     ///< transverse simplices sent to their owner
+  std::uint64_t largest_share = 0;       ///< the most simplices of S one rank owns
+  std::uint64_t oracle_tests = 0;        ///< simplices tested, counted on every rank that tested them
+};
+
+/// The rank that owns lattice vertex v: a hash of its block (a cube of 2^owner_block_bits(d) lattice
+/// vertices a side), so that neighbours mostly share an owner. A simplex belongs to the owner of its
+/// minimal vertex.
+int owner_rank(const std::int32_t* v, int d, int ranks);
+/// Blocks of about 2^6 lattice vertices (64 in R^3, 2^d from R^5 on): larger ones cut less of the walk
+/// between ranks, smaller ones split a small manifold in high dimension more evenly (SO(3) in R^9:
+/// 60 % of S on one of 2 ranks with blocks of 4^9 vertices, 51 % with 2^9).
+constexpr int owner_block_bits(int d) { return d >= 5 ? 1 : (6 + d / 2) / d; }
+
+/// trace_manifold(T, oracle, seeds, options) split between the ranks of `comm`; every rank calls it
+/// with the same arguments. Each rank walks the simplices it owns, level by level; the simplices it
+/// discovers for other ranks are sent to them once per level. `oracle` must read the vertex values
+/// from `values` (an ImplicitOracle made over it): before each level the values it will need are
+/// put there, evaluated by the vertex's owner with `evaluate` and sent in batches, so F is
+/// evaluated once per lattice vertex in the whole job. On rank 0 the result, counts included, is
+/// the one trace_manifold returns (the same simplices in the same order); other ranks return an
+/// empty result. An exception on one rank is thrown, with the same message, on every rank.
+TraceResult trace_manifold_distributed(const Triangulation& triangulation, IntersectionOracle& oracle,
+                                       SharedVertexValues& values, const VertexEvaluator& evaluate,
+                                       const std::vector<std::vector<double>>& seeds, const TraceOptions& options,
+                                       Communicator& comm, DistributedTraceStats* stats = nullptr);
+
+}  // namespace coxmesh

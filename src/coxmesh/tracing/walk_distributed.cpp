@@ -1,0 +1,266 @@
+// Thesis §4.2 over several processes: the walk of one rank, level by level, and the seed search
+// (every rank searches every seed, so all of them agree on what it found without a message).
+#include "coxmesh/tracing/walk_distributed.h"
+
+#include <cstring>
+#include <sstream>
+
+#include "coxmesh/lattice/cofaces.h"
+#include "coxmesh/lattice/faces.h"
+
+namespace coxmesh::walk {
+
+namespace {
+
+template <class T>
+void put(std::vector<std::byte>& out, const T* x, std::size_t n) {
+  const std::size_t at = out.size();
+  out.resize(at + n * sizeof(T));
+  std::memcpy(out.data() + at, x, n * sizeof(T));
+}
+
+std::string point_text(std::span<const double> x) {
+  std::ostringstream os;
+  os.precision(10);
+  os << "(";
+  for (std::size_t i = 0; i < x.size(); ++i) os << (i ? "," : "") << x[i];
+  os << ")";
+  return os.str();
+}
+
+}  // namespace
+
+DistributedWalk::DistributedWalk(const Triangulation& t, IntersectionOracle& oracle, SharedVertexValues& values,
+                                 const VertexEvaluator& evaluate, const TraceOptions& options, Communicator& comm)
+    : t_(t),
+      oracle_(oracle),
+      values_(values),
+      evaluate_(evaluate),
+      options_(options),
+      comm_(comm),
+      d_(t.dimension()),
+      k_(oracle.codimension()),
+      words_(packed_words(d_)),
+      rank_(comm.rank()),
+      ranks_(comm.size()),
+      mine_(words_),
+      next_(words_),
+      others_(words_),
+      known_vertices_(d_),
+      candidates_out_(ranks_),
+      tested_out_(ranks_),
+      point_(d_) {}
+
+// As SequentialWalk::classify, with S split: this rank's part of S and of the next level are
+// looked up, then everything else it tested; only then is the oracle asked.
+Found DistributedWalk::classify(const Simplex& tau) {
+  std::uint32_t key[packed_words(kMaxDimension)];
+  pack(tau, key);
+  const std::uint64_t h = hash_words(key, words_);
+  const int owner = owner_rank(tau.y.data(), d_, ranks_);
+  if (owner == rank_) {
+    if (const std::uint32_t id = mine_.find(key, h); id != PackedKeyIndex::kAbsent) return {Kind::inside, id};
+    if (const std::uint32_t id = next_.find(key, h); id != PackedKeyIndex::kAbsent) return {Kind::inside, id};
+  }
+  const std::uint32_t known = others_.find(key, h);
+  if (known != PackedKeyIndex::kAbsent) {
+    const std::uint32_t p = other_payload_[known];
+    if (p == kMiss) return {Kind::miss, 0};
+    if (p == kRemoteInside) return {Kind::inside, 0};
+    if (p != kUntested) return {Kind::outside, p};
+  }
+  return test(key, h, tau, owner, known);
+}
+
+// The oracle's answer on τ, kept where the walk will look for it. Each simplex tested is counted
+// once in the whole job, by its owner: when it tests it, or when another rank reports it.
+Found DistributedWalk::test(const std::uint32_t* key, std::uint64_t hash, const Simplex& tau, int owner,
+                            std::uint32_t known) {
+  const bool owned = owner == rank_;
+  if (owned && known == PackedKeyIndex::kAbsent) ++calls_;
+  ++tests_;
+  const Intersection x = oracle_.intersect(tau, point_.data());
+  if (x.hit && x.domain < 0) {
+    std::memcpy(fresh_key_, key, sizeof(std::uint32_t) * words_);
+    if (owned) {
+      const std::uint32_t id = next_.insert(key, hash).first;
+      next_keys_.push_back(discovery_);
+      next_arrivals_.push_back(kNoCofacet);
+      next_data_.insert(next_data_.end(), point_.begin(), point_.end());
+      next_data_.push_back(x.domain);
+      fresh_ = Fresh::owned, fresh_at_ = id;
+      return {Kind::inside, id};
+    }
+    others_.insert(key, hash);
+    other_payload_.push_back(kRemoteInside);
+    if (reporting_) {  // (in the seed search the owner tests it itself)
+      std::vector<std::byte>& out = candidates_out_[owner];
+      put(out, key, words_);
+      put(out, &discovery_, 1);
+      fresh_ = Fresh::remote, fresh_owner_ = owner, fresh_at_ = out.size();
+      put(out, &kNoCofacet, 1);
+      put(out, point_.data(), d_);
+      put(out, &x.domain, 1);
+      ++candidates_sent_;
+    }
+    return {Kind::inside, 0};
+  }
+  std::uint32_t payload = kMiss;
+  if (x.hit) {
+    payload = static_cast<std::uint32_t>(outside_.size());
+    outside_.insert(outside_.end(), point_.begin(), point_.end());
+    outside_.push_back(x.domain);
+  }
+  if (known == PackedKeyIndex::kAbsent) {
+    others_.insert(key, hash);
+    other_payload_.push_back(payload);
+    if (!owned && reporting_) put(tested_out_[owner], key, words_);
+  } else {
+    other_payload_[known] = payload;
+  }
+  return payload == kMiss ? Found{Kind::miss, 0} : Found{Kind::outside, payload};
+}
+
+// What the sequential walk records for a simplex discovered through μ.
+void DistributedWalk::set_fresh_arrival(std::uint64_t arrival) {
+  if (fresh_ == Fresh::owned) next_arrivals_[fresh_at_] = arrival;
+  if (fresh_ == Fresh::remote) std::memcpy(candidates_out_[fresh_owner_].data() + fresh_at_, &arrival, sizeof arrival);
+}
+
+// SequentialWalk::walk on this rank's part of one level, in the order of their global ids.
+void DistributedWalk::walk_level() {
+  Simplex tau;
+  CofaceEnumerator cofacets;
+  for (std::uint32_t i = level_begin_; i < level_end_; ++i) {
+    tau = mine_.simplex(i, d_);
+    const bool pivots = oracle_.pivot_enter(tau);
+    cofacets.reset(tau, k_ + 1);
+    std::uint32_t cofacet_index = 0;
+    while (const Simplex* cofacet = cofacets.next()) {
+      const Simplex& mu = *cofacet;
+      discovery_ = std::uint64_t{global_ids_[i]} << 32 | cofacet_index++;
+      fresh_ = Fresh::no;
+      const Found f = other_transverse_facet(oracle_, pivots, tau, mine_.key(i), arrivals_[i], mu,
+                                             [this](const Simplex& s) { return classify(s); });
+      if (f.kind == Kind::outside) {
+        std::uint32_t key[packed_words(kMaxDimension)];
+        pack(mu, key);
+        boundary_keys_.push_back(discovery_);
+        boundary_simplices_.insert(boundary_simplices_.end(), key, key + words_);
+        append_boundary_point(boundary_points_, points_.data() + static_cast<std::size_t>(i) * d_, domain_values_[i],
+                              outside_.data() + f.index, d_);
+      } else if (f.kind == Kind::inside && fresh_ != Fresh::no) {
+        set_fresh_arrival(arrival_code(mu, f.facet, fresh_key_, d_));
+      }
+    }
+  }
+}
+
+// As SequentialWalk::start_level, on |S| over all ranks; progress is shown by rank 0.
+bool DistributedWalk::start_level() {
+  if (global_size_ >= options_.max_simplices) return stopped_ = true, false;
+  if (rank_ == 0 && options_.progress && global_size_ >= last_progress_ + options_.progress_interval) {
+    last_progress_ = global_size_;
+    options_.progress(last_progress_);
+  }
+  return true;
+}
+
+void DistributedWalk::walk() {
+  std::vector<std::int32_t> vertices;
+  std::int32_t v[kMaxDimension];
+  CofaceEnumerator cofacets;
+  while (level_global_size_ > 0) {
+    std::exception_ptr failure;
+    bool go = false;
+    try {
+      go = start_level();
+    } catch (...) {
+      failure = std::current_exception();
+    }
+    agree(failure);
+    if (!go) return;
+    // The level's vertex values: τ's vertices and the one each cofacet adds (every vertex a test
+    // of the level can read).
+    vertices.clear();
+    for (std::uint32_t i = level_begin_; i < level_end_; ++i) {
+      const Simplex tau = mine_.simplex(i, d_);
+      for (int j = 0; j <= k_; ++j) tau.vertex(j, v), vertices.insert(vertices.end(), v, v + d_);
+      cofacets.reset(tau, k_ + 1);
+      while (const Simplex* mu = cofacets.next()) {
+        mu->vertex(extra_vertex_index(tau, *mu), v);
+        vertices.insert(vertices.end(), v, v + d_);
+      }
+    }
+    fetch_vertex_values(vertices);
+    try {
+      walk_level();
+    } catch (...) {
+      failure = std::current_exception();
+    }
+    agree(failure);
+    exchange_candidates();
+    append_level();
+    ++levels_;
+  }
+}
+
+// SequentialWalk::add_seed on every rank: each tests every face of the rings (the values of their
+// vertices fetched first) and keeps the simplices it owns, keyed by the order of the tests.
+void DistributedWalk::add_seed(std::span<const double> seed, bool must_succeed) {
+  if (static_cast<int>(seed.size()) != d_)
+    throw InputError("the seed " + point_text(seed) + " has " + std::to_string(seed.size()) +
+                     " coordinates, expected " + std::to_string(d_));
+  const Simplex sigma = t_.locate(seed);
+  PackedKeyIndex seen(words_);
+  std::vector<Simplex> ring, next;
+  CofaceEnumerator cofaces(sigma, d_);
+  for (Simplex s; ring.size() < 720 && cofaces.next(s);)
+    if (seen.insert(s).second) ring.push_back(s);
+  bool inside_hit = false, outside_hit = false;
+  std::uint64_t tests = 0;
+  std::vector<std::int32_t> vertices;
+  reporting_ = false;
+  for (int r = 0; r <= options_.seed_search_rings && !ring.empty(); ++r) {
+    vertices.resize(ring.size() * (d_ + 1) * d_);
+    for (std::size_t i = 0; i < ring.size(); ++i)
+      for (int j = 0; j <= d_; ++j) ring[i].vertex(j, vertices.data() + (i * (d_ + 1) + j) * d_);
+    fetch_vertex_values(vertices);
+    std::exception_ptr failure;
+    try {
+      for (const Simplex& s : ring) {
+        FaceEnumerator faces(s, k_);
+        for (Simplex tau; faces.next(tau);) {
+          discovery_ = tests++;
+          const Found f = classify(tau);
+          inside_hit |= f.kind == Kind::inside;
+          outside_hit |= f.kind == Kind::outside;
+        }
+      }
+    } catch (...) {
+      failure = std::current_exception();
+    }
+    agree(failure);
+    if (inside_hit) break;
+    next.clear();
+    for (const Simplex& s : ring) {
+      FaceEnumerator faces(s, d_ - 1);
+      for (Simplex f; faces.next(f);) {
+        CofaceEnumerator across(f, d_);
+        for (Simplex n; across.next(n);)
+          if (seen.insert(n).second) next.push_back(n);
+      }
+    }
+    ring.swap(next);
+  }
+  reporting_ = true;
+  append_level();
+  if (inside_hit || !must_succeed) return;
+  if (outside_hit)
+    throw SeedError("the seed " + point_text(seed) + " is outside the domain: the manifold near it has D >= 0");
+  throw SeedError("no simplex within " + std::to_string(options_.seed_search_rings) + " rings of the seed " +
+                  point_text(seed) +
+                  " meets the manifold: the seed is too far from it, or the triangulation is too coarse for it");
+}
+
+}  // namespace coxmesh::walk

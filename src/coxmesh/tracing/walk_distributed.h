@@ -1,0 +1,98 @@
+// Thesis §4.2 over several processes: the level-synchronous walk of walk_parallel.h with S split
+// between ranks (trace_distributed.h). Internal to tracing (not installed).
+#pragma once
+
+#include <exception>
+#include <span>
+#include <vector>
+
+#include "coxmesh/tracing/trace_distributed.h"
+#include "coxmesh/tracing/walk_common.h"
+
+namespace coxmesh::walk {
+
+// One rank's part of the walk. S is ordered as the sequential walk orders it: level by level, and
+// within a level by the discovery that found each simplex first, (id of τ) << 32 | (index of the
+// cofacet of τ), or by the order of the seed search's tests. Each rank keeps the simplices it owns
+// with their global ids; the ids of a new level come from every rank's discovery keys.
+//
+//   DistributedWalk w(T, oracle, values, evaluate, options, comm);
+//   for (seed : seeds) w.add_seed(seed, true), w.walk();
+//   TraceResult r = w.finish();  // complete on rank 0
+class DistributedWalk {
+ public:
+  DistributedWalk(const Triangulation& t, IntersectionOracle& oracle, SharedVertexValues& values,
+                  const VertexEvaluator& evaluate, const TraceOptions& options, Communicator& comm);
+
+  void add_seed(std::span<const double> seed, bool must_succeed);
+  void walk();
+  bool stopped() const { return stopped_; }
+  TraceResult finish(DistributedTraceStats* stats);
+
+ private:
+  // What a test of a k-simplex found that the caller must complete: a transverse simplex inside the
+  // domain met for the first time here (its arrival code is known only to the walk).
+  enum class Fresh : std::uint8_t { no, owned, remote };
+  // Payloads of others_ besides kMiss and an index into outside_.
+  static constexpr std::uint32_t kRemoteInside = 0xFFFFFFFEu;  // another rank's simplex of S
+  static constexpr std::uint32_t kUntested = 0xFFFFFFFDu;      // ours, tested (and counted) by another rank
+
+  Found classify(const Simplex& tau);
+  Found test(const std::uint32_t* key, std::uint64_t hash, const Simplex& tau, int owner, std::uint32_t known);
+  void set_fresh_arrival(std::uint64_t arrival);
+  void walk_level();
+  bool start_level();
+  void exchange_candidates();
+  void append_level();
+  void fetch_vertex_values(const std::vector<std::int32_t>& vertices);
+  void evaluate_here(const std::int32_t* v, double* out);
+  // Rethrows, on every rank, the first failure of any rank (nullptr: none here). Collective.
+  void agree(std::exception_ptr failure);
+
+  const Triangulation& t_;
+  IntersectionOracle& oracle_;
+  SharedVertexValues& values_;
+  const VertexEvaluator& evaluate_;
+  const TraceOptions& options_;
+  Communicator& comm_;
+  const int d_, k_, words_, rank_, ranks_;
+
+  // This rank's part of S: keys, global ids (increasing), points, D̂ and arrival codes.
+  PackedKeyIndex mine_;
+  std::vector<std::uint32_t> global_ids_;
+  std::vector<double> points_, domain_values_;
+  std::vector<std::uint64_t> arrivals_;
+  std::uint64_t global_size_ = 0;                  // |S| over all ranks
+  std::uint32_t level_begin_ = 0, level_end_ = 0;  // this rank's part of the level being walked
+  // The next level's simplices owned here, with their discovery keys (the smallest seen wins).
+  PackedKeyIndex next_;
+  std::vector<std::uint64_t> next_keys_, next_arrivals_;
+  std::vector<double> next_data_;  // d + 1 each: point, D̂
+  // Every other tested simplex: payload kMiss, kRemoteInside, kUntested (tested by another rank),
+  // or an index into outside_ (point, D̂).
+  PackedKeyIndex others_;
+  std::vector<std::uint32_t> other_payload_;
+  std::vector<double> outside_;
+  // Lattice vertices whose values are in values_.
+  PackedKeyIndex known_vertices_;
+  // Per rank: transverse simplices found for it this level, and the keys it owns tested here.
+  std::vector<std::vector<std::byte>> candidates_out_, tested_out_;
+  // S_∂ found here: (id of τ) << 32 | cofacet, key and point.
+  std::vector<std::uint64_t> boundary_keys_;
+  std::vector<std::uint32_t> boundary_simplices_;
+  std::vector<double> boundary_points_;
+
+  std::uint64_t level_global_size_ = 0;  // the level to walk, over all ranks
+  std::uint64_t discovery_ = 0;          // the key of what the current test discovers
+  bool reporting_ = true;                // send discoveries and tests to their owners (not in the seed search)
+  Fresh fresh_ = Fresh::no;
+  int fresh_owner_ = 0;
+  std::size_t fresh_at_ = 0;  // where its arrival code goes (next_ id, or byte offset in candidates_out_)
+  std::uint32_t fresh_key_[packed_words(kMaxDimension)];
+  std::vector<double> point_;
+  std::uint64_t calls_ = 0, tests_ = 0, evaluations_ = 0, vertex_values_sent_ = 0, candidates_sent_ = 0, levels_ = 0;
+  std::size_t last_progress_ = 0;
+  bool stopped_ = false;
+};
+
+}  // namespace coxmesh::walk

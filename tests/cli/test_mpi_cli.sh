@@ -1,0 +1,64 @@
+#!/usr/bin/env bash
+# End-to-end tests of `mpirun -n P coxmesh trace` ($COXMESH = the binary, $MPIEXEC = mpirun): for
+# P = 1, 2, 3 on this machine, the file and the JSON summary (timings, memory and the file's name
+# aside) are byte for byte those of one process with one thread, F evaluations included; a failure
+# of F on one rank stops every rank with one error line and a non-zero status.
+set -euo pipefail
+source "$(dirname "$0")/lib.sh"
+mpiexec=${MPIEXEC:?set MPIEXEC to mpirun}
+cd "$tmp"
+# (root in containers; more ranks than cores; no network but this machine)
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl=self,vader OMPI_MCA_rmaps_base_oversubscribe=1
+mpi() {  # mpi P ARGS...: coxmesh ARGS on P processes, ended after 120 s (a hang is a failure)
+  local n=$1; shift
+  timeout 120 "$mpiexec" --oversubscribe -n "$n" "$bin" "$@"
+}
+stable() { grep -v -E '"(path|[a-z_]*seconds|peak_memory_bytes)"' "$1"; }
+
+same_as_one_process() {  # same_as_one_process NAME TRACE-ARGS...
+  local name=$1; shift
+  "$bin" trace "$@" --threads 1 --json -o "$name.cxm" > "$name.json"
+  for n in 1 2 3; do
+    local status=0
+    # (one process is today's tool, whose oracle call count depends on its threads; several
+    # processes walk with one thread each, whatever --threads says)
+    local threads=()
+    [[ $n -eq 1 ]] && threads=(--threads 1)
+    mpi "$n" trace "$@" "${threads[@]}" --json -o "$name.$n.cxm" > "$name.$n.json" 2> "$name.$n.err" || status=$?
+    check "$name, $n processes: exit status" 0 "$status"
+    check "$name, $n processes: the same file" "same" "$(cmp -s "$name.cxm" "$name.$n.cxm" && echo same || echo different)"
+    check "$name, $n processes: the same summary" "$(stable "$name.json")" "$(stable "$name.$n.json")"
+  done
+  # F once per lattice vertex in the whole job: the count is that of one process.
+  check "$name: F evaluations" "$(grep function_evaluations "$name.json")" "$(grep function_evaluations "$name.3.json")"
+}
+
+same_as_one_process curve --preset moment-curve
+same_as_one_process surface --preset torus
+same_as_one_process three-manifold --preset sphere --m 3 --dim 4 --edge-length 0.3
+same_as_one_process box --preset torus --box -2,-2,-0.1,2,2,2
+same_as_one_process two-components --function "(x^2+y^2+z^2-1)*((x-3)^2+y^2+z^2-1)" --seed 1,0,0 --seed 4,0,0
+same_as_one_process limit --preset torus --max-simplices 3000
+check "limit: stopped by it" '  "complete": false,' "$(grep '"complete"' limit.2.json)"
+check "two components" '  "components": 2,' "$(grep '"components"' two-components.2.json)"
+check "box: a boundary" 1 "$(grep -c '"boundary_simplices": [1-9]' box.3.json)"
+
+# F is not finite for x < -0.5: the rank that meets it first stops every rank with its error.
+for n in 2 3; do
+  status=0
+  mpi "$n" trace --function "x^2+y^2+z^2-1+sqrt(x+0.5)-sqrt(x+0.5)" --seed 1,0,0 --json -o nan.cxm \
+    > nan.out 2> nan.err || status=$?
+  check "NaN on one rank, $n processes: non-zero status" 1 "$((status != 0))"
+  check "NaN, $n processes: one error line" 1 "$(grep -c '^coxmesh: error: the function is not finite' nan.err)"
+  check "NaN, $n processes: nothing on stdout, no file" "0 no" "$(wc -c < nan.out) $([ -e nan.cxm ] && echo yes || echo no)"
+done
+# Bad input: every rank meets it at once; rank 0 says it.
+status=0
+mpi 2 trace --function "x^2+" --json > bad.out 2> bad.err || status=$?
+check "bad expression: non-zero status, one error line" "1 1" "$((status != 0)) $(grep -c '^coxmesh: error:' bad.err)"
+# Manifolds with corners are traced by one process only: refused, not traced on every rank.
+status=0
+mpi 2 trace --preset sphere --domain=-x --domain=-y --json -o corners.cxm > corners.out 2> corners.err || status=$?
+check "corners under mpirun: refused with one error line" "1 1 no" \
+  "$((status != 0)) $(grep -c '^coxmesh: error: manifolds with corners are not traced by several processes' corners.err) $([ -e corners.cxm ] && echo yes || echo no)"
+finish

@@ -1,0 +1,176 @@
+// The walk split between ranks (trace_distributed.h) gives the single-process result, order, bits
+// and counts included, for 1 to 4 ranks, F evaluated once per lattice vertex in all; a failure on
+// one rank is thrown on every rank. The ranks are threads here, over an in-process Communicator,
+// so the sanitizer builds check the walk without MPI.
+#include <gtest/gtest.h>
+
+#include <barrier>
+#include <cmath>
+#include <cstring>
+#include <thread>
+
+#include "coxmesh/oracle/implicit_oracle.h"
+#include "coxmesh/tracing/trace_distributed.h"
+#include "expect_identical.h"
+
+using namespace coxmesh;
+
+namespace {
+
+// Ranks as threads: every collective writes this rank's part, waits for all, reads, waits again.
+struct Mailboxes {
+  explicit Mailboxes(int n) : ranks(n), barrier(n), mail(n, std::vector<std::vector<std::byte>>(n)), slots(n) {}
+  int ranks;
+  std::barrier<> barrier;
+  std::vector<std::vector<std::vector<std::byte>>> mail;  // [from][to]
+  std::vector<std::vector<std::byte>> slots;
+};
+
+class ThreadCommunicator final : public Communicator {
+ public:
+  ThreadCommunicator(Mailboxes& m, int rank) : m_(m), rank_(rank) {}
+  int rank() const override { return rank_; }
+  int size() const override { return m_.ranks; }
+  std::vector<std::byte> exchange(const std::vector<std::vector<std::byte>>& outgoing,
+                                  std::vector<std::size_t>& counts) override {
+    m_.mail[rank_] = outgoing;
+    m_.barrier.arrive_and_wait();
+    std::vector<std::byte> in;
+    counts.assign(m_.ranks, 0);
+    for (int r = 0; r < m_.ranks; ++r) {
+      in.insert(in.end(), m_.mail[r][rank_].begin(), m_.mail[r][rank_].end());
+      counts[r] = m_.mail[r][rank_].size();
+    }
+    m_.barrier.arrive_and_wait();
+    return in;
+  }
+  std::vector<std::byte> all_gather(const std::vector<std::byte>& mine, std::vector<std::size_t>& counts) override {
+    m_.slots[rank_] = mine;
+    m_.barrier.arrive_and_wait();
+    std::vector<std::byte> all;
+    counts.assign(m_.ranks, 0);
+    for (int r = 0; r < m_.ranks; ++r)
+      all.insert(all.end(), m_.slots[r].begin(), m_.slots[r].end()), counts[r] = m_.slots[r].size();
+    m_.barrier.arrive_and_wait();
+    return all;
+  }
+  std::vector<std::byte> gather_to_root(const std::vector<std::byte>& mine, std::vector<std::size_t>& counts) override {
+    std::vector<std::byte> all = all_gather(mine, counts);
+    if (rank_ != 0) all.clear(), counts.clear();
+    return all;
+  }
+  void broadcast(std::vector<std::byte>& bytes) override {
+    std::vector<std::size_t> counts;
+    const std::vector<std::byte> all = all_gather(rank_ == 0 ? bytes : std::vector<std::byte>{}, counts);
+    bytes.assign(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(counts[0]));
+  }
+  void sum(std::uint64_t* values, int n) override {
+    std::vector<std::byte> mine(sizeof(std::uint64_t) * n);
+    std::memcpy(mine.data(), values, mine.size());
+    std::vector<std::size_t> counts;
+    const std::vector<std::byte> all = all_gather(mine, counts);
+    for (int i = 0; i < n; ++i) {
+      values[i] = 0;
+      for (int r = 0; r < m_.ranks; ++r) {
+        std::uint64_t x;
+        std::memcpy(&x, all.data() + (static_cast<std::size_t>(r) * n + i) * sizeof x, sizeof x);
+        values[i] += x;
+      }
+    }
+  }
+
+ private:
+  Mailboxes& m_;
+  int rank_;
+};
+
+// Traces on `ranks` threads; returns rank 0's result, or rethrows each rank's exception message.
+TraceResult trace_on_ranks(int ranks, const Triangulation& t, const FunctionPtr& f, const FunctionPtr& domain,
+                           const std::vector<std::vector<double>>& seeds, const TraceOptions& options,
+                           std::vector<std::string>& errors) {
+  Mailboxes mailboxes(ranks);
+  TraceResult root;
+  errors.assign(ranks, "");
+  std::vector<std::thread> threads;
+  for (int r = 0; r < ranks; ++r)
+    threads.emplace_back([&, r] {
+      ThreadCommunicator comm(mailboxes, r);
+      const auto values = ImplicitOracle::make_shared_values(t, f, domain);
+      ImplicitOracle oracle(t, f, domain, values);
+      const VertexEvaluator evaluate = [&](const std::int32_t* v, double* out) {
+        double x[kMaxDimension];
+        t.cartesian(v, x);
+        f->evaluate(x, out);
+        if (domain) domain->evaluate(x, out + f->codimension());
+      };
+      try {
+        TraceResult result = trace_manifold_distributed(t, oracle, *values, evaluate, seeds, options, comm);
+        if (r == 0) root = std::move(result);
+      } catch (const std::exception& e) {
+        errors[r] = e.what();
+      }
+    });
+  for (auto& thread : threads) thread.join();
+  return root;
+}
+
+}  // namespace
+
+TEST(DistributedTracing, IdenticalForEveryNumberOfRanks) {
+  struct Case {
+    std::string name;
+    FunctionPtr f, domain;
+    Triangulation t;
+    std::vector<std::vector<double>> seeds;
+    std::size_t max_simplices = TraceOptions{}.max_simplices;
+  };
+  const std::vector<Case> cases = {
+      {"S2 in R3", sphere(2, 3, 1.0), nullptr, Triangulation::coxeter(3).with_longest_edge(0.08), {}},
+      {"torus, FK, vertices on M", torus(1.0, 0.5), nullptr, Triangulation::freudenthal(3).scaled(0.125), {}},
+      {"flat torus cut",
+       product(sphere(1, 2, 1.0), sphere(1, 2, 1.0)),
+       half_space_domain({1, 1, 0, 0}, 0.5),
+       Triangulation::coxeter(4).with_longest_edge(0.3),
+       {{-1, 0, 1, 0}}},
+      {"limit", moment_curve(4), nullptr, Triangulation::coxeter(4).with_longest_edge(0.2), {}, 3000},
+      {"two spheres",
+       sphere(2, 3, 1.0),
+       nullptr,
+       Triangulation::coxeter(3).with_longest_edge(0.1),
+       {{1, 0, 0}, {0, 0, 1}}},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const std::vector<std::vector<double>> seeds =
+        c.seeds.empty() ? std::vector<std::vector<double>>{c.f->seed()} : c.seeds;
+    ImplicitOracle oracle(c.t, c.f, c.domain);
+    TraceOptions options;
+    options.max_simplices = c.max_simplices;
+    const TraceResult one = trace_manifold(c.t, oracle, seeds, options);
+    EXPECT_GT(one.simplices.size(), 500u);
+    for (int ranks : {1, 2, 3, 4}) {
+      std::vector<std::string> errors;
+      const TraceResult split = trace_on_ranks(ranks, c.t, c.f, c.domain, seeds, options, errors);
+      for (const std::string& e : errors) EXPECT_EQ(e, "");
+      expect_identical(one, split, c.name + ", " + std::to_string(ranks) + " ranks");
+      EXPECT_EQ(split.function_evaluations, one.function_evaluations) << ranks << " ranks";
+      EXPECT_EQ(split.oracle_calls, one.oracle_calls) << ranks << " ranks";
+    }
+  }
+}
+
+TEST(DistributedTracing, AFailureOnOneRankStopsEveryRank) {
+  // F is not finite for x < -0.5: met by whichever rank owns the first such vertex.
+  const FunctionPtr f = make_function(3, 1, [](const double* x, double* value) {
+    value[0] = x[0] * x[0] + x[1] * x[1] + x[2] * x[2] - 1 + (x[0] < -0.5 ? std::nan("") : 0.0);
+  });
+  const Triangulation t = Triangulation::coxeter(3).with_longest_edge(0.1);
+  for (int ranks : {2, 3}) {
+    std::vector<std::string> errors;
+    trace_on_ranks(ranks, t, f, nullptr, {{1, 0, 0}}, {}, errors);
+    for (const std::string& e : errors) {
+      EXPECT_NE(e.find("the function is not finite"), std::string::npos) << e;
+      EXPECT_EQ(e, errors[0]);
+    }
+  }
+}
