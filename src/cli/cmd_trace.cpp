@@ -11,7 +11,7 @@
 #include "coxmesh/io/atomic_file.h"
 #include "coxmesh/io/write_mesh.h"
 #include "coxmesh/mesh/mesh_manifold.h"
-#include "coxmesh/mesh/mesh_winding.h"
+#include "coxmesh/mesh/mesh_point_cloud.h"
 #include "coxmesh/oracle/expression_function.h"
 #include "coxmesh/oracle/presets.h"
 #include "points.h"
@@ -71,39 +71,18 @@ void run(TraceCliOptions o) {
   }
   if (o.domain_center_given->count() && !o.domain_ball) throw InputError("--domain-center needs --domain-ball");
   // Samples: read and prepared once; their functions are thread-safe and shared by the workers.
-  std::optional<LoadedPointCloud> cloud;
+  const bool domains_given = !o.domains.empty() || o.domain_ball || !o.cut.empty();
+  std::optional<PreparedPointCloud> cloud;
   if (from_points) {
     cloud = load_point_cloud(o.points, o.m_option->count() ? std::optional<int>(o.params.m) : std::nullopt,
-                             o.params.dim, o.tri.edge_length, o.threads);
-    // auto: the winding oracle where the frames say the normal bundle is not orientable (and only
-    // the tube bounds the walk), which it meshes; the per-vertex function everywhere else.
-    const bool domains = !o.domains.empty() || o.domain_ball || !o.cut.empty() || !o.box.empty() || o.refine;
-    if (o.points.oracle == "auto") {
-      cloud->oracle = wants_winding_oracle(cloud->problem.diagnostics) && !domains ? "winding" : "vertex";
-      cloud->oracle_chosen = cloud->oracle == "winding";
-    } else {
-      cloud->oracle = o.points.oracle;
-    }
-    if (cloud->problem.diagnostics.frames_inconsistent && cloud->oracle != "winding" && !o.quiet)
-      std::cerr << "coxmesh: warning: " << cloud->problem.diagnostics.warning << "\n";
+                             o.params.dim, o.tri.edge_length, o.threads, domains_given || !o.box.empty() || o.refine);
+    if (!cloud->frames_warning().empty() && !o.quiet)
+      std::cerr << "coxmesh: warning: " << cloud->frames_warning() << "\n";
   }
   if (!from_text && !cloud && !o.center.empty()) o.params.center = parse_point(o.center, "--center");
-  std::function<std::pair<FunctionPtr, FunctionPtr>()> make_problem =
-      [&o, &cloud, from_text]() -> std::pair<FunctionPtr, FunctionPtr> {
-    FunctionPtr f, domain;
-    if (cloud) {
-      f = cloud->problem.function;
-      domain = cloud->problem.domain;
-    } else if (from_text) {
-      f = expression_function(o.function, o.params.dim);
-    } else {
-      const Preset preset = make_preset(o.preset, o.params);
-      f = preset.function;
-      domain = preset.domain;
-    }
-    const int d = f->ambient_dimension();
-    // Domains: the preset's (replaced by --domain-ball if given), then each --domain and --cut,
-    // intersected by max.
+  // Domains: the manifold's (replaced by --domain-ball if given), then each --domain and --cut,
+  // intersected by max.
+  const auto add_domains = [&o](FunctionPtr domain, int d) -> FunctionPtr {
     if (o.domain_ball) {
       std::vector<double> c =
           o.domain_center.empty() ? std::vector<double>(d, 0.0) : parse_point(o.domain_center, "--domain-center");
@@ -120,7 +99,22 @@ void run(TraceCliOptions o) {
       nc.pop_back();
       domain = domain_intersection(domain, half_space_domain(nc, c));
     }
-    return {f, domain};
+    return domain;
+  };
+  std::function<std::pair<FunctionPtr, FunctionPtr>()> make_problem =
+      [&o, &cloud, &add_domains, from_text]() -> std::pair<FunctionPtr, FunctionPtr> {
+    FunctionPtr f, domain;
+    if (cloud) {
+      f = cloud->problem.function;
+      domain = cloud->problem.domain;
+    } else if (from_text) {
+      f = expression_function(o.function, o.params.dim);
+    } else {
+      const Preset preset = make_preset(o.preset, o.params);
+      f = preset.function;
+      domain = preset.domain;
+    }
+    return {f, add_domains(domain, f->ambient_dimension())};
   };
   // (no structured binding: clang 14 cannot capture one in a lambda)
   std::pair<FunctionPtr, FunctionPtr> problem = make_problem();
@@ -181,7 +175,7 @@ void run(TraceCliOptions o) {
       if (!(mo.search_box.lo[i] < mo.search_box.hi[i]))
         throw InputError("--box: lo must be below hi in every coordinate");
   } else if (cloud) {
-    mo.search_box = cloud->problem.box;  // the samples' box, widened by the tube
+    mo.search_box = {};  // the samples' box, widened by the tube (mesh_point_cloud)
   }
   // The box bounds the walk as a domain (cells along it are closed): when given, and for equations
   // whose seeds are searched in the default box. Seeds given by hand: their whole components.
@@ -202,12 +196,6 @@ void run(TraceCliOptions o) {
       throw InputError("--seed " + s + " has " + std::to_string(x.size()) + " coordinates, expected " +
                        std::to_string(d));
     mo.seeds.push_back(std::move(x));
-  }
-  if (cloud) {  // samples spread over every component of the neighbour graph, as they are
-    mo.seeds.insert(mo.seeds.end(), cloud->problem.seeds.begin(), cloud->problem.seeds.end());
-    mo.project_seeds = false;
-    mo.trace.skip_unusable_seeds = true;
-    mo.check_regularity = false;  // (samples have their own diagnostics)
   }
 
   std::optional<ProgressDisplay> progress;
@@ -243,16 +231,20 @@ void run(TraceCliOptions o) {
     written = write_mesh(output, format, r.cells, wo);
     write_s = seconds_since(t3);
   };
-  // --oracle local-pca and winding: their own pipelines (points.cpp).
   SampleOracleCounts counts;
   MeshReport report;
-  if (cloud && (cloud->oracle == "local-pca" || cloud->oracle == "winding")) {
-    if (!o.domains.empty() || o.domain_ball || !o.cut.empty() || !o.box.empty())
-      throw InputError("--oracle " + cloud->oracle +
-                       " takes no --domain, --domain-ball, --cut or --box (only the tube)");
-    if (o.refine) throw InputError("--refine needs the function F; --oracle " + cloud->oracle + " has none");
-    report = mesh_with_sample_oracle(t, *cloud, mo.trace, counts);
-    if (write) write_file(report);
+  if (cloud) {  // the samples' oracle: its pipeline (mesh_point_cloud.h)
+    if (cloud->oracle != SampleOracle::vertex) {
+      if (domains_given || !o.box.empty())
+        throw InputError("--oracle " + cloud->oracle_name() +
+                         " takes no --domain, --domain-ball, --cut or --box (only the tube)");
+      if (o.refine) throw InputError("--refine needs the function F; --oracle " + cloud->oracle_name() + " has none");
+    }
+    DomainAdder add;
+    if (domains_given) add = [&add_domains, d](FunctionPtr tube) { return add_domains(std::move(tube), d); };
+    PointCloudMeshReport r = mesh_point_cloud(t, *cloud, mo, add, write ? write_file : WhileTopology{});
+    report = std::move(r.mesh);
+    counts = r.counts;
   } else {
     report = mesh_manifold(
         t,
@@ -263,7 +255,6 @@ void run(TraceCliOptions o) {
         },
         mo, write ? write_file : WhileTopology{});
   }
-  const std::size_t automatic = cloud ? cloud->problem.seeds.size() : report.automatic_seeds;
   if (!o.json)
     for (const std::string& w : report.warnings) std::cerr << "coxmesh: warning: " << w << "\n";
 
@@ -274,7 +265,7 @@ void run(TraceCliOptions o) {
     summary.source = from_text ? std::pair<std::string, std::string>{"function", o.function}
                                : std::pair<std::string, std::string>{"preset", o.preset};
   summary.oracle_counts = counts;
-  summary.automatic_seeds = automatic;
+  summary.automatic_seeds = report.automatic_seeds;
   if (write) summary.output = TraceSummary::Output{output, format, written, write_s};
   // With -o - the mesh goes to standard output and the summary to standard error.
   std::ostream& out = output == "-" ? std::cerr : std::cout;
