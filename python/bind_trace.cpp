@@ -303,8 +303,8 @@ The manifold, one of:
                 a point file (.xyz .txt .csv .off .ply .npy), as for --points; with m (default
                 d - 1) and dim (the expected d). Options, as the command line's: oracle ("auto",
                 "vertex", "winding", "local-pca"), neighbourhood, tube, blend_width,
-                pc_function ("blended", "nearest"), normals (an (n, d) array) and use_normals (orient
-                by them, or by the file's), edge_length (and the triangulation options), threads,
+                pc_function ("blended", "nearest"), normals (an (n, d) array to orient by) or
+                use_normals (orient by the file's), edge_length (and the triangulation options), threads,
                 max_simplices, progress. The samples' tube bounds the walk: domain, box, seeds,
                 auto_seed and refine do not apply. summary()["point_cloud"] holds what
                 `coxmesh trace --points FILE --json` reports there (file: None for an array).

@@ -83,7 +83,8 @@ std::unique_ptr<Mesh> trace_points(const TraceArguments& a) {
   mo.trace.progress = progress_callback(a);
   {
     py::gil_scoped_release release;
-    const PreparedPointCloud cloud = prepare_point_set(std::move(set), file, po, a.use_normals);
+    // (normals given as an array are there to be used)
+    const PreparedPointCloud cloud = prepare_point_set(std::move(set), file, po, a.use_normals || !a.normals.is_none());
     const int d = cloud.problem.diagnostics.ambient_dimension;
     const Triangulation t = [&] {
       py::gil_scoped_acquire gil;  // (reads the Python arguments)

@@ -88,7 +88,7 @@ def test_cxm_file_is_the_command_lines(cli, tmp_path):
 
 def test_duplicates_normals_and_options():
     X = sphere(1500)
-    mesh = coxmesh.trace(points=np.vstack([X, X[:5]]), normals=np.vstack([X, X[:5]]), use_normals=True,
+    mesh = coxmesh.trace(points=np.vstack([X, X[:5]]), normals=np.vstack([X, X[:5]]),
                          pc_function="nearest", tube=4, edge_length=0.15, threads=2)
     pc = mesh.summary()["point_cloud"]
     assert (pc["samples_read"], pc["duplicates_removed"], pc["samples"]) == (1505, 5, 1500)
