@@ -48,8 +48,12 @@ py::object refinement(const Mesh& m) {
 
 py::dict summary(const Mesh& m) {
   // The library's topology keys (shared with the command line), then what this run adds.
-  py::dict j = py::module_::import("json").attr("loads")(
-      topology_json(m.cells, m.topology).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+  const py::object loads = py::module_::import("json").attr("loads");
+  const auto dump = [](const nlohmann::json& x) {
+    return x.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  };
+  py::dict j = loads(dump(topology_json(m.cells, m.topology)));
+  if (m.point_cloud) j["point_cloud"] = loads(dump(*m.point_cloud));
   if (!m.preset.empty()) j["preset"] = m.preset;
   if (!m.function.empty()) j["function"] = m.function;
   j["function_evaluations"] = m.info.function_evaluations;

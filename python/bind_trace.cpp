@@ -1,6 +1,7 @@
 // coxmesh.trace(): the `coxmesh trace` command as a function (thesis Ch. 4; docs/cli.md). The
-// manifold is an expression, a Python callable (evaluated a breadth-first level per call) or a
-// preset; the walk, the cell complex and the topology run in C++ without the GIL.
+// manifold is an expression, a Python callable (evaluated a breadth-first level per call), a
+// preset or samples (trace_points.cpp); the walk, the cell complex and the topology run in C++
+// without the GIL.
 #include <pybind11/stl.h>
 
 #include <chrono>
@@ -13,6 +14,7 @@
 #include "coxmesh/oracle/presets.h"
 #include "mesh.h"
 #include "python_function.h"
+#include "trace_arguments.h"
 
 namespace py = pybind11;
 
@@ -47,15 +49,6 @@ std::optional<int> dimension_shown(const py::object& dim, const py::object& seed
   }
   return std::nullopt;
 }
-
-// The arguments of trace(), named after the options of `coxmesh trace`.
-struct TraceArguments {
-  py::object function, preset, m, dim, radius, minor_radius, center, domain, seeds, box, edge_length, scale, matrix,
-      offset, triangulation, progress;
-  bool auto_seed, refine;
-  int threads;
-  std::size_t max_simplices;
-};
 
 std::unique_ptr<Mesh> trace(const TraceArguments& a) {
   auto mesh = std::make_unique<Mesh>();
@@ -160,7 +153,50 @@ std::unique_ptr<Mesh> trace(const TraceArguments& a) {
     default_edge /= 40;
   }
 
-  // The ambient triangulation.
+  const Triangulation t = ambient_triangulation(a, d, default_edge);
+
+  if (!a.seeds.is_none())
+    for (const py::handle& s : a.seeds) mo.seeds.push_back(point(s, d, "a seed"));
+
+  mo.trace.progress_interval = 2048;
+  mo.trace.progress = progress_callback(a);
+  mo.trace.threads = python_code ? 1 : a.threads;
+  mo.refine = a.refine;
+
+  {
+    py::gil_scoped_release release;
+    bool first = true;  // expressions are not thread-safe: every worker but the first gets its own
+    MeshReport r = mesh_manifold(
+        t,
+        [&]() -> ManifoldFunctions {
+          if (first) return first = false, ManifoldFunctions{f, preset_domain, make_faces()};
+          return {make_f(), preset_domain, make_faces()};
+        },
+        mo);
+    mesh->cells = std::move(r.cells);
+    mesh->topology = std::move(r.topology);
+    mesh->seeds = r.seeds;
+    mesh->automatic_seeds = r.automatic_seeds;
+    mesh->oracle_calls = r.oracle_calls;
+    mesh->warnings = std::move(r.warnings);
+    mesh->refinement = r.refinement;
+    mesh->info.function_evaluations = r.function_evaluations;
+    mesh->info.complete = r.status == TraceStatus::complete;
+    mesh->info.message = r.message;
+    mesh->timings = {{"trace_seconds", r.trace_seconds},
+                     {"cell_complex_seconds", r.cell_complex_seconds},
+                     {"topology_seconds", r.topology_seconds}};
+    if (r.refinement) mesh->timings["refine_seconds"] = r.refinement->seconds;
+  }
+  for (int r = 0; r < d; ++r)
+    for (int c = 0; c < d; ++c) mesh->info.matrix.push_back(t.matrix()(r, c));
+  mesh->info.offset.assign(t.offset().data(), t.offset().data() + d);
+  return mesh;
+}
+
+}  // namespace
+
+Triangulation ambient_triangulation(const TraceArguments& a, int d, double default_edge) {
   if (!a.scale.is_none() && !a.edge_length.is_none()) throw InputError("give scale or edge_length, not both");
   std::optional<Triangulation> t;
   bool sized = false;  // the linear part is given: no default scale
@@ -189,10 +225,10 @@ std::unique_ptr<Mesh> trace(const TraceArguments& a) {
     const std::vector<double> b = point(a.offset, d, "offset");
     t = t->with_offset(Eigen::Map<const Eigen::VectorXd>(b.data(), d));
   }
+  return *t;
+}
 
-  if (!a.seeds.is_none())
-    for (const py::handle& s : a.seeds) mo.seeds.push_back(point(s, d, "a seed"));
-
+std::function<void(std::size_t)> progress_callback(const TraceArguments& a) {
   // Ctrl-C and progress: the walk calls back every few thousand simplices; at most every 50 ms the
   // callback takes the GIL to run Python's signal handlers (KeyboardInterrupt stops the trace) and
   // to report progress. Python callables check signals at every batch too.
@@ -200,55 +236,25 @@ std::unique_ptr<Mesh> trace(const TraceArguments& a) {
   const bool report = !show && !a.progress.is_none() && !py::isinstance<py::bool_>(a.progress);
   if (report && !PyCallable_Check(a.progress.ptr()))
     throw InputError("progress must be True, False or a callable f(traced_simplices)");
-  const Clock::time_point start = Clock::now();
-  Clock::time_point last = start, last_shown = start;
-  mo.trace.progress_interval = 2048;
-  mo.trace.progress = [&](std::size_t traced) {
-    if (seconds_since(last) < 0.05) return;
-    last = Clock::now();
+  // (The state is shared by the copies the walk makes; the callable is borrowed from `a`, which
+  // outlives the walk, so that copying the callback needs no GIL.)
+  struct State {
+    Clock::time_point start = Clock::now(), last = start, last_shown = start;
+  };
+  auto state = std::make_shared<State>();
+  const py::handle progress = a.progress;
+  return [state, progress, show, report](std::size_t traced) {
+    if (seconds_since(state->last) < 0.05) return;
+    state->last = Clock::now();
     py::gil_scoped_acquire gil;
     if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-    if (report) a.progress(traced);
-    if (show && seconds_since(last_shown) >= 1.0) {  // a line a second, as the command line does
-      last_shown = Clock::now();
-      std::fprintf(stderr, "coxmesh: tracing: %zu simplices, %.1f s\n", traced, seconds_since(start));
+    if (report) progress(traced);
+    if (show && seconds_since(state->last_shown) >= 1.0) {  // a line a second, as the command line does
+      state->last_shown = Clock::now();
+      std::fprintf(stderr, "coxmesh: tracing: %zu simplices, %.1f s\n", traced, seconds_since(state->start));
     }
   };
-  mo.trace.threads = python_code ? 1 : a.threads;
-  mo.refine = a.refine;
-
-  {
-    py::gil_scoped_release release;
-    bool first = true;  // expressions are not thread-safe: every worker but the first gets its own
-    MeshReport r = mesh_manifold(
-        *t,
-        [&]() -> ManifoldFunctions {
-          if (first) return first = false, ManifoldFunctions{f, preset_domain, make_faces()};
-          return {make_f(), preset_domain, make_faces()};
-        },
-        mo);
-    mesh->cells = std::move(r.cells);
-    mesh->topology = std::move(r.topology);
-    mesh->seeds = r.seeds;
-    mesh->automatic_seeds = r.automatic_seeds;
-    mesh->oracle_calls = r.oracle_calls;
-    mesh->warnings = std::move(r.warnings);
-    mesh->refinement = r.refinement;
-    mesh->info.function_evaluations = r.function_evaluations;
-    mesh->info.complete = r.status == TraceStatus::complete;
-    mesh->info.message = r.message;
-    mesh->timings = {{"trace_seconds", r.trace_seconds},
-                     {"cell_complex_seconds", r.cell_complex_seconds},
-                     {"topology_seconds", r.topology_seconds}};
-    if (r.refinement) mesh->timings["refine_seconds"] = r.refinement->seconds;
-  }
-  for (int r = 0; r < d; ++r)
-    for (int c = 0; c < d; ++c) mesh->info.matrix.push_back(t->matrix()(r, c));
-  mesh->info.offset.assign(t->offset().data(), t->offset().data() + d);
-  return mesh;
 }
-
-}  // namespace
 
 void bind_trace(py::module_& m) {
   m.def(
@@ -256,10 +262,15 @@ void bind_trace(py::module_& m) {
       [](py::object function, py::object preset, py::object m_, py::object dim, py::object radius,
          py::object minor_radius, py::object center, py::object domain, py::object seeds, bool auto_seed,
          py::object box, py::object edge_length, py::object scale, py::object matrix, py::object offset,
-         py::object triangulation, bool refine, int threads, std::size_t max_simplices, py::object progress) {
-        return trace(TraceArguments{function,      preset,   m_,        dim,         radius,  minor_radius, center,
-                                    domain,        seeds,    box,       edge_length, scale,   matrix,       offset,
-                                    triangulation, progress, auto_seed, refine,      threads, max_simplices});
+         py::object triangulation, bool refine, int threads, std::size_t max_simplices, py::object progress,
+         py::object points, py::object normals, std::string oracle, py::object neighbourhood, py::object tube,
+         py::object blend_width, bool use_normals, std::string pc_function) {
+        const TraceArguments a{
+            function,      preset,        m_,        dim,         radius,  minor_radius,  center,
+            domain,        seeds,         box,       edge_length, scale,   matrix,        offset,
+            triangulation, progress,      auto_seed, refine,      threads, max_simplices, points,
+            normals,       neighbourhood, tube,      blend_width, oracle,  pc_function,   use_normals};
+        return a.points.is_none() ? trace(a) : trace_points(a);
       },
       py::kw_only(), py::arg("function") = py::none(), py::arg("preset") = py::none(), py::arg("m") = py::none(),
       py::arg("dim") = py::none(), py::arg("radius") = py::none(), py::arg("minor_radius") = py::none(),
@@ -267,7 +278,10 @@ void bind_trace(py::module_& m) {
       py::arg("auto_seed") = false, py::arg("box") = py::none(), py::arg("edge_length") = py::none(),
       py::arg("scale") = py::none(), py::arg("matrix") = py::none(), py::arg("offset") = py::none(),
       py::arg("triangulation") = "coxeter", py::arg("refine") = false, py::arg("threads") = 0,
-      py::arg("max_simplices") = 20'000'000, py::arg("progress") = false, R"doc(
+      py::arg("max_simplices") = 20'000'000, py::arg("progress") = false, py::arg("points") = py::none(),
+      py::arg("normals") = py::none(), py::arg("oracle") = "auto", py::arg("neighbourhood") = py::none(),
+      py::arg("tube") = py::none(), py::arg("blend_width") = py::none(), py::arg("use_normals") = false,
+      py::arg("pc_function") = "blended", R"doc(
 Meshes a manifold: traces it through the ambient triangulation (thesis Ch. 4), builds its cell
 complex and its topology report. Keyword arguments only; the names follow `coxmesh trace`'s options.
 
@@ -286,6 +300,15 @@ The manifold, one of:
   domain        keep the part where D(x) < 0: a string, a callable X -> (n,), or a list of them
                 (intersected; with two or more, each is its own face: a manifold with corners,
                 traced on one thread, its strata in summary()["strata"] and Mesh.domains(j)).
+  points        samples of the manifold (thesis Ch. 4): an (n, d) array of numbers, or the name of
+                a point file (.xyz .txt .csv .off .ply .npy), as for --points; with m (default
+                d - 1) and dim (the expected d). Options, as the command line's: oracle ("auto",
+                "vertex", "winding", "local-pca"), neighbourhood, tube, blend_width,
+                pc_function ("blended", "nearest"), normals (an (n, d) array to orient by) or
+                use_normals (orient by the file's), edge_length (and the triangulation options), threads,
+                max_simplices, progress. The samples' tube bounds the walk: domain, box, seeds,
+                auto_seed and refine do not apply. summary()["point_cloud"] holds what
+                `coxmesh trace --points FILE --json` reports there (file: None for an array).
 
 Where to start and where to stop:
   seeds         points near the manifold (projected onto it); default F's own seed, or points
@@ -318,6 +341,7 @@ KeyboardInterrupt within ~0.1 s. The GIL is released except while a callable run
     mesh = coxmesh.trace(preset="sphere", m=2, dim=4)
     mesh = coxmesh.trace(function="x^2+y^2+z^2-1", edge_length=0.05)
     mesh = coxmesh.trace(function=lambda X: (X**2).sum(1) - 1, dim=3, seeds=[[1, 0, 0]])
+    mesh = coxmesh.trace(points=X, m=2)             # X: an (n, 3) array of samples of a surface
 )doc");
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,6 +25,7 @@ struct Mesh {
   std::map<std::string, double> timings;       // trace_seconds, cell_complex_seconds, topology_seconds
   std::vector<std::string> warnings;           // one sentence each (mesh_manifold)
   std::optional<RefinementReport> refinement;  // trace(refine=True)
+  std::optional<nlohmann::json> point_cloud;   // trace(points=...): the summary's "point_cloud" object
 };
 
 }  // namespace coxmesh::python

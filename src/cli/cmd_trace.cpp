@@ -12,7 +12,7 @@
 #include "coxmesh/io/write_mesh.h"
 #include "coxmesh/mesh/mesh_distributed.h"
 #include "coxmesh/mesh/mesh_manifold.h"
-#include "coxmesh/mesh/mesh_winding.h"
+#include "coxmesh/mesh/mesh_point_cloud.h"
 #include "coxmesh/oracle/expression_function.h"
 #include "coxmesh/oracle/presets.h"
 #include "coxmesh/oracle/stratified_oracle.h"
@@ -74,21 +74,13 @@ void run(TraceCliOptions o) {
   }
   if (o.domain_center_given->count() && !o.domain_ball) throw InputError("--domain-center needs --domain-ball");
   // Samples: read and prepared once; their functions are thread-safe and shared by the workers.
-  std::optional<LoadedPointCloud> cloud;
+  const bool domains_given = !o.domains.empty() || o.domain_ball || !o.cuts.empty();
+  std::optional<PreparedPointCloud> cloud;
   if (from_points) {
     cloud = load_point_cloud(o.points, o.m_option->count() ? std::optional<int>(o.params.m) : std::nullopt,
-                             o.params.dim, o.tri.edge_length, o.threads);
-    // auto: the winding oracle where the frames say the normal bundle is not orientable (and only
-    // the tube bounds the walk), which it meshes; the per-vertex function everywhere else.
-    const bool domains = !o.domains.empty() || o.domain_ball || !o.cuts.empty() || !o.box.empty() || o.refine;
-    if (o.points.oracle == "auto") {
-      cloud->oracle = wants_winding_oracle(cloud->problem.diagnostics) && !domains ? "winding" : "vertex";
-      cloud->oracle_chosen = cloud->oracle == "winding";
-    } else {
-      cloud->oracle = o.points.oracle;
-    }
-    if (cloud->problem.diagnostics.frames_inconsistent && cloud->oracle != "winding" && !o.quiet)
-      std::cerr << "coxmesh: warning: " << cloud->problem.diagnostics.warning << "\n";
+                             o.params.dim, o.tri.edge_length, o.threads, domains_given || !o.box.empty() || o.refine);
+    if (!cloud->frames_warning().empty() && !o.quiet)
+      std::cerr << "coxmesh: warning: " << cloud->frames_warning() << "\n";
   }
   if (!from_text && !cloud && !o.center.empty()) o.params.center = parse_point(o.center, "--center");
   std::function<ManifoldFunctions()> make_problem = [&o, &cloud, from_text]() -> ManifoldFunctions {
@@ -186,7 +178,7 @@ void run(TraceCliOptions o) {
       if (!(mo.search_box.lo[i] < mo.search_box.hi[i]))
         throw InputError("--box: lo must be below hi in every coordinate");
   } else if (cloud) {
-    mo.search_box = cloud->problem.box;  // the samples' box, widened by the tube
+    mo.search_box = {};  // the samples' box, widened by the tube (mesh_point_cloud)
   }
   // The box bounds the walk as a domain (cells along it are closed): when given, and for equations
   // whose seeds are searched in the default box. Seeds given by hand: their whole components.
@@ -207,12 +199,6 @@ void run(TraceCliOptions o) {
       throw InputError("--seed " + s + " has " + std::to_string(x.size()) + " coordinates, expected " +
                        std::to_string(d));
     mo.seeds.push_back(std::move(x));
-  }
-  if (cloud) {  // samples spread over every component of the neighbour graph, as they are
-    mo.seeds.insert(mo.seeds.end(), cloud->problem.seeds.begin(), cloud->problem.seeds.end());
-    mo.project_seeds = false;
-    mo.trace.skip_unusable_seeds = true;
-    mo.check_regularity = false;  // (samples have their own diagnostics)
   }
 
   // Under mpirun the walk is split between the processes and rank 0 reports (distributed.h).
@@ -257,16 +243,20 @@ void run(TraceCliOptions o) {
     written = write_mesh(output, format, r.cells, wo);
     write_s = seconds_since(t3);
   };
-  // --oracle local-pca and winding: their own pipelines (points.cpp).
   SampleOracleCounts counts;
   MeshReport report;
-  if (cloud && (cloud->oracle == "local-pca" || cloud->oracle == "winding")) {
-    if (!o.domains.empty() || o.domain_ball || !o.cuts.empty() || !o.box.empty())
-      throw InputError("--oracle " + cloud->oracle +
-                       " takes no --domain, --domain-ball, --cut or --box (only the tube)");
-    if (o.refine) throw InputError("--refine needs the function F; --oracle " + cloud->oracle + " has none");
-    report = mesh_with_sample_oracle(t, *cloud, mo.trace, counts);
-    if (write) write_file(report);
+  if (cloud) {  // the samples' oracle: its pipeline (mesh_point_cloud.h)
+    if (cloud->oracle != SampleOracle::vertex) {
+      if (domains_given || !o.box.empty())
+        throw InputError("--oracle " + cloud->oracle_name() +
+                         " takes no --domain, --domain-ball, --cut or --box (only the tube)");
+      if (o.refine) throw InputError("--refine needs the function F; --oracle " + cloud->oracle_name() + " has none");
+    }
+    DomainMaker domains;  // the tube (or the --domain-ball that replaces it) and each --domain and --cut
+    if (domains_given) domains = [&make_problem](const FunctionPtr&) { return make_problem(); };
+    PointCloudMeshReport r = mesh_point_cloud(t, *cloud, mo, domains, write ? write_file : WhileTopology{});
+    report = std::move(r.mesh);
+    counts = r.counts;
   } else {
     report = mesh_manifold(
         t,
@@ -276,7 +266,6 @@ void run(TraceCliOptions o) {
         },
         mo, write ? write_file : WhileTopology{});
   }
-  const std::size_t automatic = cloud ? cloud->problem.seeds.size() : report.automatic_seeds;
   if (!o.json)
     for (const std::string& w : report.warnings) std::cerr << "coxmesh: warning: " << w << "\n";
 
@@ -287,7 +276,7 @@ void run(TraceCliOptions o) {
     summary.source = from_text ? std::pair<std::string, std::string>{"function", o.function}
                                : std::pair<std::string, std::string>{"preset", o.preset};
   summary.oracle_counts = counts;
-  summary.automatic_seeds = automatic;
+  summary.automatic_seeds = report.automatic_seeds;
   if (write) summary.output = TraceSummary::Output{output, format, written, write_s};
   // With -o - the mesh goes to standard output and the summary to standard error.
   std::ostream& out = output == "-" ? std::cerr : std::cout;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "coxmesh/io/point_cloud_report.h"
 #include "report.h"
 
 namespace coxmesh::cli {
@@ -10,15 +11,7 @@ void print_trace_json(std::ostream& out, const TraceSummary& s) {
   const MeshReport& report = s.report;
   nlohmann::json j = topology_json(report.cells, report.topology);
   if (s.cloud) {
-    j["point_cloud"] = point_cloud_json(*s.cloud);
-    j["point_cloud"]["oracle"] = s.cloud->oracle;
-    const SampleOracleCounts& c = s.oracle_counts;
-    if (c.local_pca_defects) j["point_cloud"]["local_pca_defects"] = *c.local_pca_defects;
-    if (c.winding_odd_tetrahedra) {
-      j["point_cloud"]["oracle_reason"] = s.cloud->oracle_reason();
-      j["point_cloud"]["winding_odd_tetrahedra"] = *c.winding_odd_tetrahedra;
-      j["point_cloud"]["winding_uncertain_triangles"] = c.winding_uncertain_triangles;
-    }
+    j["point_cloud"] = point_cloud_json(*s.cloud, s.oracle_counts);
   } else {
     j[s.source.first] = s.source.second;
   }

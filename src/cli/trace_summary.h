@@ -14,13 +14,13 @@
 namespace coxmesh::cli {
 
 struct TraceSummary {
-  TraceSummary(std::string what, int d, const MeshReport& r, const LoadedPointCloud* samples)
+  TraceSummary(std::string what, int d, const MeshReport& r, const PreparedPointCloud* samples)
       : name(std::move(what)), ambient_dimension(d), report(r), cloud(samples) {}
 
   std::string name;  ///< what was meshed, for the first human line
   int ambient_dimension;
   const MeshReport& report;
-  const LoadedPointCloud* cloud;               ///< samples, if the manifold came from them
+  const PreparedPointCloud* cloud;             ///< samples, if the manifold came from them
   std::pair<std::string, std::string> source;  ///< ("preset", name) or ("function", text); empty for samples
   SampleOracleCounts oracle_counts;            ///< of --oracle local-pca or winding
   std::size_t automatic_seeds = 0;

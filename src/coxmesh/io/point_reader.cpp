@@ -102,6 +102,25 @@ std::size_t remove_duplicate_points(PointSet& set) {
   return removed;
 }
 
+PointSet point_set_from_rows(std::vector<double> points, int d, std::vector<double> normals) {
+  if (d < 1 || d > kMaxDimension)
+    throw InputError("points of R^" + std::to_string(d) + ": d must be between 1 and " + std::to_string(kMaxDimension));
+  if (points.empty() || points.size() % d != 0) throw InputError("the samples must be an (n, d) array with n >= 1");
+  if (!normals.empty() && normals.size() != points.size())
+    throw InputError("the normals must be an array of the samples' shape");
+  for (double v : points)
+    if (!std::isfinite(v)) throw InputError("the samples contain NaN or infinite coordinates");
+  for (double v : normals)
+    if (!std::isfinite(v)) throw InputError("the normals contain NaN or infinite values");
+  PointSet set;
+  set.dimension = d;
+  set.points = std::move(points);
+  set.normals = std::move(normals);
+  set.format = "array";
+  set.duplicates = remove_duplicate_points(set);
+  return set;
+}
+
 PointSet read_points(const std::string& path, const PointReadOptions& options) {
   std::error_code ec;
   if (fs::is_directory(path, ec)) fail(path, "is a directory, not a point file");

@@ -38,6 +38,11 @@ struct PointReadOptions {
 /// the file holds, no points, or d outside 1..31.
 PointSet read_points(const std::string& path, const PointReadOptions& options = {});
 
+/// The samples of an n × d array (row-major) with optional normals (empty or n × d), checked as a
+/// file's are (d in 1..31, finite values, at least one point), duplicates removed; format "array".
+/// Throws InputError.
+PointSet point_set_from_rows(std::vector<double> points, int d, std::vector<double> normals = {});
+
 /// Removes exact duplicates in place (first occurrence kept, order otherwise unchanged); returns
 /// how many were removed.
 std::size_t remove_duplicate_points(PointSet& set);
