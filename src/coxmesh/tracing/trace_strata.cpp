@@ -3,10 +3,10 @@
 #include "coxmesh/tracing/trace_strata.h"
 
 #include <bit>
-#include <sstream>
 
 #include "coxmesh/lattice/cofaces.h"
 #include "coxmesh/lattice/faces.h"
+#include "coxmesh/tracing/seed_search.h"
 
 namespace coxmesh {
 
@@ -99,28 +99,13 @@ void StrataWalk::walk() {
   }
 }
 
-std::string point_text(std::span<const double> x) {
-  std::ostringstream os;
-  os.precision(10);
-  os << "(";
-  for (std::size_t i = 0; i < x.size(); ++i) os << (i ? "," : "") << x[i];
-  os << ")";
-  return os.str();
-}
-
 void StrataWalk::add_seed(std::span<const double> seed, bool must_succeed) {
-  if (static_cast<int>(seed.size()) != d_)
-    throw InputError("the seed " + point_text(seed) + " has " + std::to_string(seed.size()) +
-                     " coordinates, expected " + std::to_string(d_));
+  walk::check_seed_dimension(seed, d_);
   const Simplex sigma = t_.locate(seed);
-  PackedKeyIndex seen(packed_words(d_));
-  std::vector<Simplex> ring, next;
-  CofaceEnumerator cofaces(sigma, d_);
-  for (Simplex s; ring.size() < 720 && cofaces.next(s);)
-    if (seen.insert(s).second) ring.push_back(s);
-  for (int r = 0; r <= options_.seed_search_rings && !ring.empty(); ++r) {
+  walk::SeedRings rings(sigma, d_);
+  for (int r = 0; r <= options_.seed_search_rings && !rings.ring().empty(); ++r) {
     bool hit = false;
-    for (const Simplex& s : ring) {
+    for (const Simplex& s : rings.ring()) {
       FaceEnumerator faces(s, k_);
       for (Simplex tau; faces.next(tau);) hit |= test(tau, 0);
       if (k_ < d_) {
@@ -130,20 +115,11 @@ void StrataWalk::add_seed(std::span<const double> seed, bool must_succeed) {
       }
     }
     if (hit) return;
-    next.clear();
-    for (const Simplex& s : ring) {
-      FaceEnumerator faces(s, d_ - 1);
-      for (Simplex f; faces.next(f);) {
-        CofaceEnumerator across(f, d_);
-        for (Simplex n; across.next(n);)
-          if (seen.insert(n).second) next.push_back(n);
-      }
-    }
-    ring.swap(next);
+    rings.widen();
   }
   if (must_succeed)
     throw SeedError("no simplex within " + std::to_string(options_.seed_search_rings) + " rings of the seed " +
-                    point_text(seed) + " meets the manifold inside the domains");
+                    walk::point_text(seed) + " meets the manifold inside the domains");
 }
 
 }  // namespace

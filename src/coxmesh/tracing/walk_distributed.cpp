@@ -3,10 +3,10 @@
 #include "coxmesh/tracing/walk_distributed.h"
 
 #include <cstring>
-#include <sstream>
 
 #include "coxmesh/lattice/cofaces.h"
 #include "coxmesh/lattice/faces.h"
+#include "coxmesh/tracing/seed_search.h"
 
 namespace coxmesh::walk {
 
@@ -17,15 +17,6 @@ void put(std::vector<std::byte>& out, const T* x, std::size_t n) {
   const std::size_t at = out.size();
   out.resize(at + n * sizeof(T));
   std::memcpy(out.data() + at, x, n * sizeof(T));
-}
-
-std::string point_text(std::span<const double> x) {
-  std::ostringstream os;
-  os.precision(10);
-  os << "(";
-  for (std::size_t i = 0; i < x.size(); ++i) os << (i ? "," : "") << x[i];
-  os << ")";
-  return os.str();
 }
 
 }  // namespace
@@ -208,20 +199,15 @@ void DistributedWalk::walk() {
 // SequentialWalk::add_seed on every rank: each tests every face of the rings (the values of their
 // vertices fetched first) and keeps the simplices it owns, keyed by the order of the tests.
 void DistributedWalk::add_seed(std::span<const double> seed, bool must_succeed) {
-  if (static_cast<int>(seed.size()) != d_)
-    throw InputError("the seed " + point_text(seed) + " has " + std::to_string(seed.size()) +
-                     " coordinates, expected " + std::to_string(d_));
+  check_seed_dimension(seed, d_);
   const Simplex sigma = t_.locate(seed);
-  PackedKeyIndex seen(words_);
-  std::vector<Simplex> ring, next;
-  CofaceEnumerator cofaces(sigma, d_);
-  for (Simplex s; ring.size() < 720 && cofaces.next(s);)
-    if (seen.insert(s).second) ring.push_back(s);
+  SeedRings rings(sigma, d_);
   bool inside_hit = false, outside_hit = false;
   std::uint64_t tests = 0;
   std::vector<std::int32_t> vertices;
   reporting_ = false;
-  for (int r = 0; r <= options_.seed_search_rings && !ring.empty(); ++r) {
+  for (int r = 0; r <= options_.seed_search_rings && !rings.ring().empty(); ++r) {
+    const std::vector<Simplex>& ring = rings.ring();
     vertices.resize(ring.size() * (d_ + 1) * d_);
     for (std::size_t i = 0; i < ring.size(); ++i)
       for (int j = 0; j <= d_; ++j) ring[i].vertex(j, vertices.data() + (i * (d_ + 1) + j) * d_);
@@ -242,16 +228,7 @@ void DistributedWalk::add_seed(std::span<const double> seed, bool must_succeed) 
     }
     agree(failure);
     if (inside_hit) break;
-    next.clear();
-    for (const Simplex& s : ring) {
-      FaceEnumerator faces(s, d_ - 1);
-      for (Simplex f; faces.next(f);) {
-        CofaceEnumerator across(f, d_);
-        for (Simplex n; across.next(n);)
-          if (seen.insert(n).second) next.push_back(n);
-      }
-    }
-    ring.swap(next);
+    rings.widen();
   }
   reporting_ = true;
   append_level();

@@ -2,10 +2,9 @@
 // for the simplices it starts from. The one hot loop of coxmesh.
 #include "coxmesh/tracing/walk_sequential.h"
 
-#include <sstream>
-
 #include "coxmesh/lattice/cofaces.h"
 #include "coxmesh/lattice/faces.h"
+#include "coxmesh/tracing/seed_search.h"
 
 namespace coxmesh::walk {
 
@@ -111,34 +110,15 @@ void SequentialWalk::add_boundary(const Simplex& mu, std::uint32_t inside, const
   append_boundary_point(result_.boundary_points, p, domain_values_[inside], outside, d_);
 }
 
-namespace {
-std::string point_text(std::span<const double> x) {
-  std::ostringstream os;
-  os.precision(10);
-  os << "(";
-  for (std::size_t i = 0; i < x.size(); ++i) os << (i ? "," : "") << x[i];
-  os << ")";
-  return os.str();
-}
-}  // namespace
-
 void SequentialWalk::add_seed(std::span<const double> seed, bool must_succeed) {
-  if (static_cast<int>(seed.size()) != d_)
-    throw InputError("the seed " + point_text(seed) + " has " + std::to_string(seed.size()) +
-                     " coordinates, expected " + std::to_string(d_));
+  check_seed_dimension(seed, d_);
   const Simplex sigma = t_.locate(seed);
-  // Ring 0: the d-simplices containing the seed, at most 720 of them (a seed on a lattice vertex
-  // lies in (d+1)! of them, 3.6 million for d = 9: see generic_seed); ring r+1: the neighbours of
-  // ring r across facets.
-  PackedKeyIndex seen(packed_words(d_));
-  std::vector<Simplex> ring, next;
-  CofaceEnumerator cofaces(sigma, d_);
-  for (Simplex s; ring.size() < 720 && cofaces.next(s);)
-    if (seen.insert(s).second) ring.push_back(s);
+  // (generic_seed moves a seed off the lattice vertices, where it lies in (d+1)! simplices)
+  SeedRings rings(sigma, d_);
   bool outside_hit = false;
-  for (int r = 0; r <= options_.seed_search_rings && !ring.empty(); ++r) {
+  for (int r = 0; r <= options_.seed_search_rings && !rings.ring().empty(); ++r) {
     bool inside_hit = false;
-    for (const Simplex& s : ring) {
+    for (const Simplex& s : rings.ring()) {
       FaceEnumerator faces(s, k_);
       for (Simplex tau; faces.next(tau);) {
         const Found f = classify(tau);
@@ -147,16 +127,7 @@ void SequentialWalk::add_seed(std::span<const double> seed, bool must_succeed) {
       }
     }
     if (inside_hit) return;
-    next.clear();
-    for (const Simplex& s : ring) {
-      FaceEnumerator faces(s, d_ - 1);
-      for (Simplex f; faces.next(f);) {
-        CofaceEnumerator across(f, d_);
-        for (Simplex n; across.next(n);)
-          if (seen.insert(n).second) next.push_back(n);
-      }
-    }
-    ring.swap(next);
+    rings.widen();
   }
   if (!must_succeed) return;
   if (outside_hit)
