@@ -89,7 +89,7 @@ class VertexRefiner {
       r = r_new;
       norm = norm_new;
     }
-    if ((current - start).norm() > limit_ || !inside_the_others(current.data(), stratum)) {
+    if ((current - start).norm() > limit_ || !stays_inside_the_others(start.data(), current.data(), stratum)) {
       out.refined = false;
       residual(start.data(), r);
       current = start;
@@ -105,13 +105,17 @@ class VertexRefiner {
     for (std::size_t i = 0; i < on_.size(); ++i) on_[i]->evaluate(x, r.data() + k_ + i);
   }
 
-  // D_l(x) < 0 for every domain l the vertex does not lie on (the moved point still inside them).
-  bool inside_the_others(const double* x, std::uint64_t stratum) const {
+  // For every domain l the vertex does not lie on: D_l(to) < 0, the moved point inside it, or at
+  // least no farther out than `from` (a vertex traced inside only by the symbolic perturbation,
+  // from D_l = 0, may stay on D_l = 0).
+  bool stays_inside_the_others(const double* from, const double* to, std::uint64_t stratum) const {
     for (std::size_t l = 0; l < domains_.size(); ++l) {
       if (stratum >> l & 1) continue;
-      double value = 0;
-      domains_[l]->evaluate(x, &value);
-      if (!(value < 0)) return false;
+      double after = 0, before = 0;
+      domains_[l]->evaluate(to, &after);
+      if (after < 0) continue;
+      domains_[l]->evaluate(from, &before);
+      if (!(after <= before)) return false;
     }
     return true;
   }

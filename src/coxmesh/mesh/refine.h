@@ -43,9 +43,9 @@ using RefineFunctions = std::function<RefineSet()>;
 /// r = (F, D_i for i in the vertex's stratum), so that a vertex on the boundary of some domains
 /// stays on it, J = r's Jacobian by central differences (ImplicitFunction has no gradient). It
 /// stops when the step no longer shrinks |r| or after options.iterations steps. A vertex that would
-/// move farther than options.max_move × longest_edge from where it was, end outside one of the
-/// other domains (D_l ≥ 0 for l not in its stratum), or end with a larger |r| (or a non-finite one)
-/// stays where it was and is counted in not_refined. Vertices are split into chunks over
+/// move farther than options.max_move × longest_edge from where it was, leave one of the other
+/// domains (end with D_l ≥ 0 and larger than at the start, for l not in its stratum), or end with a larger |r| (or a
+/// non-finite one) stays where it was and is counted in not_refined. Vertices are split into chunks over
 /// options.threads workers, each with its own functions from `make`; the result does not depend on
 /// the thread count.
 ///   Throws InputError when F and the complex live in different R^d, or a stratum names a domain
