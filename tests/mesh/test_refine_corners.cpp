@@ -79,7 +79,8 @@ TEST(RefineCorners, SphereOctantVerticesLandOnTheirStrata) {
     }
   }
   EXPECT_EQ(corners, 3u);
-  // Much closer to the exact patch; the same complex, strata and topology.
+  // The vertices much closer to the exact patch (the triangles between them still sag, O(h²)); the
+  // same complex, strata and topology.
   const double before = max_vertex_distance(plain.cells), after = max_vertex_distance(cc);
   EXPECT_GT(before, 1e-4);
   EXPECT_LE(after, before / 10);
