@@ -157,8 +157,8 @@ RefinementReport refine_vertices(CellComplex& cc, double longest_edge, const Ref
   for (std::size_t v = 0; v < n; ++v) named |= stratum_of(cc, v, n0);
   const std::size_t domains = functions[0].domains.size();
   if (domains < 64 && named >> domains != 0)
-    throw InputError("refinement: the vertices lie on " + std::to_string(std::bit_width(named)) +
-                     " domain functions, only " + std::to_string(domains) + " given");
+    throw InputError("refinement: a vertex lies on the boundary of domain " + std::to_string(std::bit_width(named)) +
+                     ", but only " + std::to_string(domains) + " domain functions are given");
   for (const RefineSet& set : functions)
     for (const FunctionPtr& domain : set.domains)
       if (!domain || domain->ambient_dimension() != d || domain->codimension() != 1)
