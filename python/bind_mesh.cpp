@@ -3,6 +3,7 @@
 // every output format, triangles for plotting; and read() of .cxm files.
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <sstream>
 
 #include "bindings.h"
@@ -195,7 +196,26 @@ The summary attributes carry the keys of `coxmesh trace --json`; summary() retur
                 x.cells.boundary_vertices.data(),
                 {static_cast<py::ssize_t>(x.cells.boundary_vertices.size()) / std::max<py::ssize_t>(d, 1), d}, self);
           },
-          "The points on the boundary (boundary vertices), an (n, d) read-only array.")
+          "The points on the boundary (boundary vertices), an (n, d) read-only array; empty for a manifold with "
+          "corners, whose boundary points are among `points` (see vertex_domains).")
+      .def_property_readonly(
+          "vertex_domains",
+          [](py::object self) -> py::array_t<std::uint64_t> {
+            const Mesh& x = self.cast<const Mesh&>();
+            const CellLevel& vertices = level(x, 0, false);
+            if (x.cells.stratified())
+              return view<std::uint64_t>(vertices.domains.data(), {static_cast<py::ssize_t>(vertices.size())}, self);
+            // (no corners: every row of `points` is inside; the boundary ones are boundary_points)
+            py::array_t<std::uint64_t> inside(static_cast<py::ssize_t>(vertices.size()));
+            std::fill_n(inside.mutable_data(), vertices.size(), std::uint64_t{0});
+            inside.attr("setflags")(py::arg("write") = false);
+            return inside;
+          },
+          R"doc(
+For each row of `points`, the domains whose boundaries it lies on as a bitmask (bit i: domain
+i + 1; 0 inside), a read-only uint64 array: a vertex with b bits set lies on a stratum of
+dimension m - b (b = m: a corner). Nonzero only for a manifold with corners (several domains);
+with one domain the boundary vertices are boundary_points instead.)doc")
       .def(
           "facets",
           [](py::object self, int j, bool boundary) {

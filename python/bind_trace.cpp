@@ -325,8 +325,9 @@ The ambient triangulation:
   matrix        a (d, d) matrix for the linear part (replaces triangulation and the default scale).
   offset        the translation b (d numbers).
 
-  refine        move every vertex onto M (and boundary vertices onto M ∩ {D = 0}) by a few
-                Gauss–Newton steps; the cells do not change. mesh.refinement tells max |F| before
+  refine        move every vertex onto M (and a vertex on the boundary of some domains onto
+                M ∩ {D_i = 0} for those, inside the others) by a few Gauss–Newton steps; the
+                cells do not change. mesh.refinement tells max |F| before
                 and after, and how many vertices stayed where they were.
 
   threads       worker threads (0: all hardware threads); the result is the same for every number.

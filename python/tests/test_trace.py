@@ -200,6 +200,33 @@ def test_a_list_of_domains_makes_a_manifold_with_corners():
     assert len(coxmesh.trace(preset="sphere", domain=["-x"], edge_length=0.15).domains(0)) == 0
 
 
+def test_vertex_domains_find_the_boundary_and_the_corners_and_refine_moves_them():
+    octant = dict(preset="sphere", domain=["-x", "-y", "-z"], seeds=[[0.6, 0.6, 0.6]], edge_length=0.15)
+    plain, refined = coxmesh.trace(**octant), coxmesh.trace(refine=True, **octant)
+    masks = refined.vertex_domains
+    assert masks.dtype == np.uint64 and len(masks) == len(refined.points) and not masks.flags.writeable
+    np.testing.assert_array_equal(masks, refined.domains(0))
+    np.testing.assert_array_equal(masks, plain.vertex_domains)
+    bits = np.array([bin(int(m)).count("1") for m in masks])
+    assert sorted(masks[bits == 2]) == [3, 5, 6]  # the corners
+    assert (bits == 1).sum() > 0 and (bits == 0).sum() > 0
+    # Each boundary vertex lies on the planes of its bits, inside the others; the corners at e_1, e_2, e_3.
+    x = refined.points
+    on = (masks[:, None] >> np.arange(3, dtype=np.uint64)) & np.uint64(1) == 1
+    assert np.abs(x[on]).max() <= 1e-12 and (x[~on] > 0).all()
+    assert np.abs(np.linalg.norm(x, axis=1) - 1).max() <= 1e-12
+    np.testing.assert_allclose(x[bits == 2][np.argsort(masks[bits == 2])], [[0, 0, 1], [0, 1, 0], [1, 0, 0]],
+                               atol=1e-12)
+    r = refined.refinement
+    assert r["not_refined"] == 0 and r["vertices"] == len(x) and r["max_abs_f_before"] > 1e-4
+    assert np.abs(plain.points[on]).max() > 1e-4 or np.abs(np.linalg.norm(plain.points, axis=1) - 1).max() > 1e-4
+    assert refined.summary()["strata"] == plain.summary()["strata"]
+    # Without corners: no vertex of `points` is on a boundary; the boundary ones are boundary_points.
+    cut = coxmesh.trace(preset="sphere", domain="z", edge_length=0.15)
+    assert len(cut.vertex_domains) == len(cut.points) and not cut.vertex_domains.any()
+    assert len(cut.boundary_points) > 0
+
+
 def test_refine_moves_the_vertices_onto_the_manifold(cli):
     plain = coxmesh.trace(preset="torus", edge_length=0.2)
     refined = coxmesh.trace(preset="torus", edge_length=0.2, refine=True)

@@ -352,8 +352,8 @@ void register_trace(CLI::App& app, int& status) {
       ->capture_default_str()
       ->check(CLI::Range(0, 1024));
   cmd->add_flag("--refine", o->refine,
-                "move the vertices onto M (Gauss-Newton on F, and on the domain at its boundary); each moves at "
-                "most a quarter of the longest edge");
+                "move the vertices onto M (Gauss-Newton on F, and on the domains whose boundary a vertex lies on); "
+                "each moves at most a quarter of the longest edge");
   cmd->add_flag("--no-output", o->no_output, "write no file");
   cmd->add_flag("--json", o->json, "print the summary as JSON (and write a file only with -o)");
   cmd->add_flag("-q,--quiet", o->quiet, "print nothing but errors");

@@ -72,11 +72,27 @@ data = open("octant.cxm", "rb").read()
 open("fewer.cxm", "wb").write(data.replace(b"\"domains\":3", b"\"domains\":1", 1))'
 fails_with "cxm: bitmasks naming missing domains" "domains that do not exist" "$bin" check fewer.cxm
 
+# --refine: every vertex onto the sphere and the planes of its stratum, the corners exactly at the
+# unit points; the strata unchanged; the same for 1 and 2 threads.
+"$bin" "${octant[@]}" --refine --json -o refined.off > refined.json
+check "refine: the report" "0 True" "$("$py" -c '
+import json; r = json.load(open("refined.json"))["refinement"]
+print(r["not_refined"], r["max_abs_f_after"] <= 1e-10 * r["max_abs_f_before"] and r["max_abs_f_before"] > 1e-4)')"
+check "refine: strata unchanged" "$a" "$(strata < refined.json)"
+check "refine: vertices on the sphere inside the octant, corners at the unit points" "True [True, True, True]" \
+  "$("$py" -c '
+import numpy as np
+lines = open("refined.off").read().split("\n"); n = int(lines[1].split()[0])
+x = np.array([[float(v) for v in l.split()] for l in lines[2:2 + n]])
+print(bool(np.all(np.abs(np.linalg.norm(x, axis=1) - 1) < 1e-12) and np.all(x > -1e-12)),
+      [bool(np.min(np.linalg.norm(x - e, axis=1)) < 1e-10) for e in np.eye(3)])')"
+check "refine: same for 1 and 2 threads" "same" \
+  "$("$bin" "${octant[@]}" --refine --threads 2 -q -o refined2.off && cmp -s refined.off refined2.off && echo same || echo different)"
+
 # Errors: one line each.
 too_many=()
 for i in $(seq 65); do too_many+=(--cut "0,0,1,$i"); done
 exits_with "more than 64 domains" 1 "at most 64 domains" "$bin" trace --preset sphere "${too_many[@]}" --no-output
-exits_with "--refine with corners" 1 "manifold with corners is not supported" "$bin" "${octant[@]}" --refine --no-output
 exits_with "seed outside the domains" 1 "inside the domains" "$bin" trace --preset sphere --cut 1,0,0,0 --cut 0,1,0,0 --seed 1,0,0 --no-output
 exits_with "3-manifold with corners to stl" 1 "cannot hold this manifold with corners" "$bin" "${cube[@]}" --project 1,2,3 -o cube.stl
 check "surface with corners to off" "OFF" "$("$bin" "${octant[@]}" -q -o octant.off && head -1 octant.off)"

@@ -25,7 +25,7 @@ CellComplex trace(const Triangulation& t, FunctionPtr f, FunctionPtr domain = nu
 }
 
 RefineFunctions same(FunctionPtr f, FunctionPtr domain = nullptr) {
-  return [f, domain] { return std::pair<FunctionPtr, FunctionPtr>{f, domain}; };
+  return [f, domain] { return RefineSet{f, domain ? std::vector<FunctionPtr>{domain} : std::vector<FunctionPtr>{}}; };
 }
 
 double max_abs(const ImplicitFunction& f, const PointArray& xs) {

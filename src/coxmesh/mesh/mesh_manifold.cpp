@@ -30,6 +30,34 @@ FunctionPtr merged_domain(const ManifoldFunctions& w) {
   return merged;
 }
 
+// The domain functions of each face of a manifold with corners, in the order of the strata's bits:
+// `domain`, then `domains`, then the box when it bounds the walk.
+std::vector<FunctionPtr> faces_of(const ManifoldFunctions& w, const FunctionPtr& bound) {
+  std::vector<FunctionPtr> faces;
+  if (w.domain) faces.push_back(w.domain);
+  faces.insert(faces.end(), w.domains.begin(), w.domains.end());
+  if (bound && faces.size() >= 2) faces.push_back(bound);
+  return faces;
+}
+
+// Moves the vertices onto M (refine.h): the first worker gets `first`, the others fresh functions
+// from `make`, each through `to_set`.
+template <class ToSet>
+RefinementReport refine(CellComplex& cc, double h, int threads, const ManifoldFunctions& first,
+                        const ManifoldMaker& make, const ToSet& to_set) {
+  RefineOptions ro;
+  ro.threads = threads;
+  bool first_refiner = true;
+  return refine_vertices(
+      cc, h,
+      [&]() -> RefineSet {
+        if (!first_refiner) return to_set(make());
+        first_refiner = false;
+        return to_set(first);
+      },
+      ro);
+}
+
 }  // namespace
 
 MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, const MeshOptions& o,
@@ -44,13 +72,9 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
   FunctionPtr bound = o.bounded_by_box ? box_domain(box) : nullptr;
   const auto with_box = [&bound](FunctionPtr domain) { return bound ? domain_intersection(domain, bound) : domain; };
   // Each domain function its own face (a manifold with corners) when there are several.
-  std::vector<FunctionPtr> faces;
-  if (first.domain) faces.push_back(first.domain);
-  faces.insert(faces.end(), first.domains.begin(), first.domains.end());
+  const std::vector<FunctionPtr> faces = faces_of(first, bound);
   const bool stratified = faces.size() >= 2;
   const FunctionPtr domain = with_box(merged_domain(first));  // (seeds are searched in all of them)
-  if (stratified && bound) faces.push_back(bound);
-  if (stratified && o.refine) throw InputError("refining the vertices of a manifold with corners is not supported");
 
   MeshReport report;
   SeedChoice seeds;
@@ -94,6 +118,13 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
     const PointArray& xs = report.cells.vertices;
     if (o.check_regularity && singular_on(f_only, {xs.data(), xs.size()}, t.longest_edge()))
       report.warnings.push_back(kSingularOnTracedSet);
+    if (o.refine) {
+      if (o.on_phase) o.on_phase("refining the vertices onto M");
+      report.refinement =
+          refine(report.cells, t.longest_edge(), trace.threads, first, make, [&bound](const ManifoldFunctions& w) {
+            return RefineSet{w.f, faces_of(w, bound)};
+          });
+    }
     return finish(std::move(report), o, while_topology);
   }
   // Several workers share the vertex values (F once per vertex in all), each with its own functions.
@@ -153,17 +184,10 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
   }
   if (o.refine) {
     if (o.on_phase) o.on_phase("refining the vertices onto M");
-    RefineOptions ro;
-    ro.threads = trace.threads;
-    bool first_refiner = true;
-    report.refinement = refine_vertices(
-        report.cells, h,
-        [&]() -> std::pair<FunctionPtr, FunctionPtr> {
-          if (first_refiner) return first_refiner = false, std::pair<FunctionPtr, FunctionPtr>{f, domain};
-          const ManifoldFunctions w = make();
-          return {w.f, with_box(merged_domain(w))};
-        },
-        ro);
+    report.refinement = refine(report.cells, h, trace.threads, first, make, [&](const ManifoldFunctions& w) {
+      const FunctionPtr merged = with_box(merged_domain(w));
+      return RefineSet{w.f, merged ? std::vector<FunctionPtr>{merged} : std::vector<FunctionPtr>{}};
+    });
   }
 
   return finish(std::move(report), o, while_topology);

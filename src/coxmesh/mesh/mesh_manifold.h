@@ -69,10 +69,11 @@ struct MeshReport {
 };
 
 /// Meshes M on the triangulation t (several domain functions: a stratified complex, cell_complex.h,
-/// traced on one thread, a box bounding the walk being one more domain, last; no refinement): seeds (given, F's own, or
-/// searched in the box), the walk from them with options.trace.threads workers (F once per lattice vertex in all), the
-/// cell complex, with options.refine the vertices moved onto M (refine_vertices; the domain includes the box when it
-/// bounds the walk), and the topology (none when the run was stopped by a limit: the complex is then open).
+/// traced on one thread, a box bounding the walk being one more domain, last): seeds (given, F's own, or searched in
+/// the box), the walk from them with options.trace.threads workers (F once per lattice vertex in all), the cell
+/// complex, with options.refine the vertices moved onto M (refine_vertices: onto the boundary of the domains of their
+/// stratum; one domain includes the box when it bounds the walk), and the topology (none when the run was stopped by a
+/// limit: the complex is then open).
 ///   Throws InputError when no seed is found or none reaches M (saying whether F is not finite, or
 ///   its differential singular, there), SeedError, EvaluationError.
 ///
