@@ -169,7 +169,7 @@ bool launched_by_mpi() {
 
 std::unique_ptr<Communicator> session_communicator;
 [[maybe_unused]] bool session_initialised = false;  // (read only with COXMESH_MPI)
-std::streambuf* error_stream = nullptr;  // std::cerr's, which ranks other than 0 keep for themselves
+std::streambuf* error_stream = nullptr;             // std::cerr's, which ranks other than 0 keep for themselves
 
 }  // namespace
 
