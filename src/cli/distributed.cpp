@@ -113,7 +113,7 @@ class MpiCommunicator final : public Communicator {
     std::size_t at = 0;
     for (int r = 0; r < size_; ++r) {
       if (r == 0) {
-        std::memcpy(all.data(), mine.data(), mine.size());
+        if (!mine.empty()) std::memcpy(all.data(), mine.data(), mine.size());
       } else {
         for (std::size_t done = 0; done < all_counts[r]; done += kPiece)
           MPI_Recv(all.data() + at + done, static_cast<int>(std::min(kPiece, all_counts[r] - done)), MPI_BYTE, r, 1,

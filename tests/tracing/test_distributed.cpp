@@ -66,7 +66,7 @@ class ThreadCommunicator final : public Communicator {
   }
   void sum(std::uint64_t* values, int n) override {
     std::vector<std::byte> mine(sizeof(std::uint64_t) * n);
-    std::memcpy(mine.data(), values, mine.size());
+    if (n > 0) std::memcpy(mine.data(), values, mine.size());
     std::vector<std::size_t> counts;
     const std::vector<std::byte> all = all_gather(mine, counts);
     for (int i = 0; i < n; ++i) {

@@ -25,12 +25,14 @@ namespace {
 
 template <class T>
 void put(std::vector<std::byte>& out, const T* x, std::size_t n) {
+  if (n == 0) return;  // (x may be the null data() of an empty vector, which memcpy must not get)
   const std::size_t at = out.size();
   out.resize(at + n * sizeof(T));
   std::memcpy(out.data() + at, x, n * sizeof(T));
 }
 template <class T>
 void take(const std::byte*& in, T* x, std::size_t n) {
+  if (n == 0) return;
   std::memcpy(x, in, n * sizeof(T));
   in += n * sizeof(T);
 }
@@ -218,7 +220,7 @@ void DistributedWalk::append_level() {
   std::vector<std::size_t> counts;
   const std::vector<std::byte> all_bytes = comm_.all_gather(keys, counts);
   std::vector<std::uint64_t> all(all_bytes.size() / sizeof(std::uint64_t));
-  std::memcpy(all.data(), all_bytes.data(), all_bytes.size());
+  if (!all_bytes.empty()) std::memcpy(all.data(), all_bytes.data(), all_bytes.size());
   std::sort(all.begin(), all.end());
   level_begin_ = mine_.size();
   for (const std::uint32_t j : order) {
