@@ -12,8 +12,6 @@ namespace coxmesh {
 
 namespace {
 
-constexpr std::uint32_t kMiss = 0xFFFFFFFFu;
-
 class StrataWalk {
  public:
   StrataWalk(const Triangulation& t, StratifiedOracle& oracle, const TraceOptions& options)
