@@ -66,4 +66,13 @@ inline void check_seed_dimension(std::span<const double> seed, int d) {
                      " coordinates, expected " + std::to_string(d));
 }
 
+/// The seed search of the one-domain walks found nothing: the seed's component lies outside the
+/// domain (a transverse simplex was met, outside), or no simplex within `rings` meets M.
+[[noreturn]] inline void throw_seed_not_found(std::span<const double> seed, bool outside_hit, int rings) {
+  if (outside_hit)
+    throw SeedError("the seed " + point_text(seed) + " is outside the domain: the manifold near it has D >= 0");
+  throw SeedError("no simplex within " + std::to_string(rings) + " rings of the seed " + point_text(seed) +
+                  " meets the manifold: the seed is too far from it, or the triangulation is too coarse for it");
+}
+
 }  // namespace coxmesh::walk

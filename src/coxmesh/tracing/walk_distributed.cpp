@@ -10,18 +10,6 @@
 
 namespace coxmesh::walk {
 
-namespace {
-
-template <class T>
-void put(std::vector<std::byte>& out, const T* x, std::size_t n) {
-  if (n == 0) return;  // (x may be the null data() of an empty vector, which memcpy must not get)
-  const std::size_t at = out.size();
-  out.resize(at + n * sizeof(T));
-  std::memcpy(out.data() + at, x, n * sizeof(T));
-}
-
-}  // namespace
-
 DistributedWalk::DistributedWalk(const Triangulation& t, IntersectionOracle& oracle, SharedVertexValues& values,
                                  const VertexEvaluator& evaluate, const TraceOptions& options, Communicator& comm)
     : t_(t),
@@ -233,12 +221,7 @@ void DistributedWalk::add_seed(std::span<const double> seed, bool must_succeed) 
   }
   reporting_ = true;
   append_level();
-  if (inside_hit || !must_succeed) return;
-  if (outside_hit)
-    throw SeedError("the seed " + point_text(seed) + " is outside the domain: the manifold near it has D >= 0");
-  throw SeedError("no simplex within " + std::to_string(options_.seed_search_rings) + " rings of the seed " +
-                  point_text(seed) +
-                  " meets the manifold: the seed is too far from it, or the triangulation is too coarse for it");
+  if (!inside_hit && must_succeed) throw_seed_not_found(seed, outside_hit, options_.seed_search_rings);
 }
 
 }  // namespace coxmesh::walk

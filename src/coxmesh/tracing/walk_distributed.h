@@ -2,6 +2,8 @@
 // between ranks (trace_distributed.h). Internal to tracing (not installed).
 #pragma once
 
+#include <cstddef>
+#include <cstring>
 #include <exception>
 #include <span>
 #include <vector>
@@ -10,6 +12,21 @@
 #include "coxmesh/tracing/walk_common.h"
 
 namespace coxmesh::walk {
+
+/// Appends n values to a message, and reads them back (raw bytes: every rank is the same program).
+template <class T>
+void put(std::vector<std::byte>& out, const T* x, std::size_t n) {
+  if (n == 0) return;  // (x may be the null data() of an empty vector, which memcpy must not get)
+  const std::size_t at = out.size();
+  out.resize(at + n * sizeof(T));
+  std::memcpy(out.data() + at, x, n * sizeof(T));
+}
+template <class T>
+void take(const std::byte*& in, T* x, std::size_t n) {
+  if (n == 0) return;
+  std::memcpy(x, in, n * sizeof(T));
+  in += n * sizeof(T);
+}
 
 // One rank's part of the walk. S is ordered as the sequential walk orders it: level by level, and
 // within a level by the discovery that found each simplex first, (id of τ) << 32 | (index of the

@@ -23,20 +23,6 @@ namespace walk {
 
 namespace {
 
-template <class T>
-void put(std::vector<std::byte>& out, const T* x, std::size_t n) {
-  if (n == 0) return;  // (x may be the null data() of an empty vector, which memcpy must not get)
-  const std::size_t at = out.size();
-  out.resize(at + n * sizeof(T));
-  std::memcpy(out.data() + at, x, n * sizeof(T));
-}
-template <class T>
-void take(const std::byte*& in, T* x, std::size_t n) {
-  if (n == 0) return;
-  std::memcpy(x, in, n * sizeof(T));
-  in += n * sizeof(T);
-}
-
 enum class ErrorKind : std::uint8_t { other, input, seed, evaluation, memory };
 
 }  // namespace

@@ -129,12 +129,7 @@ void SequentialWalk::add_seed(std::span<const double> seed, bool must_succeed) {
     if (inside_hit) return;
     rings.widen();
   }
-  if (!must_succeed) return;
-  if (outside_hit)
-    throw SeedError("the seed " + point_text(seed) + " is outside the domain: the manifold near it has D >= 0");
-  throw SeedError("no simplex within " + std::to_string(options_.seed_search_rings) + " rings of the seed " +
-                  point_text(seed) +
-                  " meets the manifold: the seed is too far from it, or the triangulation is too coarse for it");
+  if (must_succeed) throw_seed_not_found(seed, outside_hit, options_.seed_search_rings);
 }
 
 }  // namespace coxmesh::walk
