@@ -20,8 +20,8 @@ namespace coxmesh {
 /// Thread-safe map lattice vertex → `stride` values. Lookups of stored vertices take no lock and
 /// write nothing shared: they read one open-addressing table whose slots are published with release
 /// stores after the key and values they point to, so its cache lines stay shared between cores
-/// instead of moving at every lookup. The table is one block, so that it gets huge pages (one table
-/// per shard missed the TLB at almost every lookup: docs/benchmarks.md). Storing a vertex takes the
+/// instead of moving at every lookup. The table is one block (one table per shard missed the TLB at
+/// almost every lookup: docs/benchmarks.md). Storing a vertex takes the
 /// lock of its shard (one of 32, by hash), held while F is evaluated, so no vertex is evaluated
 /// twice; its key and values go to the shard's blocks, and its slot is claimed by compare-and-swap
 /// (other shards store at the same time). The table is replaced by one twice its size, with every

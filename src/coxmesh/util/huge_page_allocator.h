@@ -1,10 +1,13 @@
 // An allocator for the big flat arrays of coxmesh (hash tables, key arrays, points, incidences):
-// blocks of 2 MiB and more are 2 MiB-aligned, rounded up to whole 2 MiB pages and marked for
-// transparent huge pages, so that filling them takes one page fault per 2 MiB instead of one per
-// 4 KiB. Page faults are much of the cost of growing tables (see docs/benchmarks.md for their cost).
-// Big blocks are mapped directly, so they arrive zero-filled by the kernel (zeroed_huge_vector
-// does not zero them again) and go back to the system when freed. Smaller blocks come from
+// blocks of 2 MiB and more are mapped directly, 2 MiB-aligned and rounded up to whole 2 MiB pages,
+// so they arrive zero-filled by the kernel (zeroed_huge_vector does not zero them again), go back to
+// the system when freed, and can be backed by transparent huge pages. Smaller blocks come from
 // operator new as usual.
+// Huge pages are asked for (madvise) only with COXMESH_HUGE_PAGES=1 in the environment: where the
+// system enables them for all memory they are used anyway, and asking for them is a gamble. On a
+// virtual machine that backs its memory lazily, the first touch of a huge page cost 30 times the
+// first touch of the same bytes in 4 KiB pages, and asking made whole runs 2.5 times slower;
+// elsewhere it had saved a part of the page faults (docs/benchmarks.md, "Page faults").
 #pragma once
 
 #include <sys/mman.h>
@@ -12,11 +15,22 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <new>
+#include <string_view>
 #include <utility>
 #include <vector>
 
 namespace coxmesh {
+
+/// COXMESH_HUGE_PAGES=1 in the environment (read once).
+inline bool huge_pages_requested() {
+  static const bool requested = [] {
+    const char* value = std::getenv("COXMESH_HUGE_PAGES");
+    return value != nullptr && value == std::string_view("1");
+  }();
+  return requested;
+}
 
 template <class T>
 struct HugePageAllocator {
@@ -45,7 +59,7 @@ struct HugePageAllocator {
     munmap(reinterpret_cast<void*>(aligned + rounded), start + kPage - aligned);  // (never empty)
     void* p = reinterpret_cast<void*>(aligned);
 #endif
-    madvise(p, rounded, MADV_HUGEPAGE);  // (advice only: without THP it is a normal block)
+    if (huge_pages_requested()) madvise(p, rounded, MADV_HUGEPAGE);  // (advice only)
     return static_cast<T*>(p);
   }
   void deallocate(T* p, std::size_t n) {
