@@ -4,6 +4,7 @@
 // without the GIL.
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <optional>
@@ -164,10 +165,13 @@ std::unique_ptr<Mesh> trace(const TraceArguments& a) {
 
 }  // namespace
 
+bool DomainArguments::python_code() const {
+  return std::any_of(given.begin(), given.end(), [](const Face& face) { return face.callable != nullptr; });
+}
+
 std::vector<FunctionPtr> DomainArguments::faces() const {
   std::vector<FunctionPtr> faces;
-  for (const std::string& text : texts) faces.push_back(expression_domain(text, d));
-  faces.insert(faces.end(), callables.begin(), callables.end());
+  for (const Face& face : given) faces.push_back(face.callable ? face.callable : expression_domain(face.text, d));
   return faces;
 }
 
@@ -183,12 +187,12 @@ DomainArguments domain_arguments(const py::object& domain, int d) {
   }
   for (const py::handle& dom : domains) {
     if (py::isinstance<py::str>(dom)) {
-      out.texts.push_back(dom.cast<std::string>());
-      expression_domain(out.texts.back(), d);  // checked now, before any work
-      out.source += "; domain " + out.texts.back();
+      out.given.push_back({dom.cast<std::string>(), nullptr});
+      expression_domain(out.given.back().text, d);  // checked now, before any work
+      out.source += "; domain " + out.given.back().text;
     } else {
-      out.callables.push_back(std::make_shared<PythonFunction>(py::reinterpret_borrow<py::object>(dom), d,
-                                                               std::vector<double>(d, 0.0), "the domain", 1));
+      out.given.push_back({"", std::make_shared<PythonFunction>(py::reinterpret_borrow<py::object>(dom), d,
+                                                                std::vector<double>(d, 0.0), "the domain", 1)});
       out.source += "; domain (python function)";
     }
   }

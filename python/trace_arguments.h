@@ -33,13 +33,16 @@ struct TraceArguments {
 /// function and for samples alike: each its own face (two or more: a manifold with corners,
 /// mesh_manifold.h), as --domain for `coxmesh trace`.
 struct DomainArguments {
+  struct Face {
+    std::string text;      ///< an expression: made again for every worker (not thread-safe), or
+    FunctionPtr callable;  ///< a Python callable (PythonFunction): the walk runs on one thread
+  };
   int d = 0;
-  std::vector<std::string> texts;      ///< expressions: made again for every worker (not thread-safe)
-  std::vector<FunctionPtr> callables;  ///< Python callables (PythonFunction): the walk runs on one thread
-  std::string source;                  ///< "; domain TEXT" for each, for Mesh.info.source
+  std::vector<Face> given;  ///< in the order given: face i is bit i of Mesh.domains(j)
+  std::string source;       ///< "; domain TEXT" for each, for Mesh.info.source
 
-  bool empty() const { return texts.empty() && callables.empty(); }
-  bool python_code() const { return !callables.empty(); }
+  bool empty() const { return given.empty(); }
+  bool python_code() const;
   /// The faces, new expressions each time (for one worker; needs no GIL).
   std::vector<FunctionPtr> faces() const;
 };

@@ -95,6 +95,11 @@ std::unique_ptr<Mesh> trace_points(const TraceArguments& a) {
     py::gil_scoped_release release;
     // (normals given as an array are there to be used)
     const PreparedPointCloud cloud = prepare_point_set(std::move(set), file, po, a.use_normals || !a.normals.is_none());
+    if (cloud.oracle != SampleOracle::vertex) {  // (the command line's messages, in the argument names)
+      if (!domains.empty() || !a.box.is_none())
+        throw InputError("oracle " + cloud.oracle_name() + " takes no domain or box (only the tube)");
+      if (a.refine) throw InputError("refine needs the function F; oracle " + cloud.oracle_name() + " has none");
+    }
     const int d = cloud.problem.diagnostics.ambient_dimension;
     const Triangulation t = [&] {
       py::gil_scoped_acquire gil;  // (reads the Python arguments)
