@@ -56,6 +56,11 @@ def test_rp2_gets_the_winding_oracle():
     # Asked for the per-vertex function instead, the frames' warning comes with it.
     vertex = coxmesh.trace(points=rp2(), m=2, oracle="vertex").summary()["point_cloud"]
     assert vertex["oracle"] == "vertex" and "cannot be made consistent" in vertex["warning"]
+    # A bound besides the tube needs the per-vertex function: auto keeps to it, winding refuses it.
+    boxed = coxmesh.trace(points=rp2(), m=2, box=[-1] * 4 + [1] * 4).summary()["point_cloud"]
+    assert boxed["oracle"] == "vertex" and not boxed["frames_consistent"]
+    with pytest.raises(coxmesh.InputError, match="oracle winding takes no domain or box"):
+        coxmesh.trace(points=rp2(), m=2, oracle="winding", domain="x")
 
 
 @pytest.mark.parametrize("samples, options", [(sphere, []), (rp2, ["--m", "2"]),
