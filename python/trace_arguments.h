@@ -38,7 +38,7 @@ struct DomainArguments {
     FunctionPtr callable;  ///< a Python callable (PythonFunction): the walk runs on one thread
   };
   int d = 0;
-  std::vector<Face> given;  ///< in the order given: face i is bit i of Mesh.domains(j)
+  std::vector<Face> given;  ///< in the order given (their order in the strata and Mesh.domains(j))
   std::string source;       ///< "; domain TEXT" for each, for Mesh.info.source
 
   bool empty() const { return given.empty(); }

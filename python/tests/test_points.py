@@ -172,6 +172,8 @@ def test_bounds_mean_what_they_mean_on_the_command_line(cli, tmp_path, kwargs, o
     if "domain" in kwargs or "box" in kwargs:  # a disc: the cap z < 0.3 (or z > -0.5), or its half x < 0
         assert s["betti"] == [1, 0, 0] and s["boundary_cells"][0] > 0 and s["is_manifold"]
         assert s["corners"] == (2 if isinstance(kwargs.get("domain"), list) else 0)
+        if s["corners"]:  # (the tube is domain 1)
+            assert sorted(x["domains"] for x in s["strata"]) == [[], [2], [2, 3], [3]]
         assert mesh.points[:, 2].max() < 0.3 + 0.1 if "domain" in kwargs else mesh.points[:, 2].min() > -0.5 - 0.1
     else:
         assert s["betti"] == [1, 0, 1] and s["boundary_cells"] == [0, 0]
