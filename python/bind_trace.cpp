@@ -4,6 +4,7 @@
 // without the GIL.
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <optional>
@@ -97,35 +98,11 @@ std::unique_ptr<Mesh> trace(const TraceArguments& a) {
   const FunctionPtr f = make_f();
   const int d = f->ambient_dimension();
 
-  // Domains: the preset's, then each given one (an expression or a callable), intersected.
-  py::list domains;
-  if (!a.domain.is_none()) {
-    if (py::isinstance<py::str>(a.domain) || PyCallable_Check(a.domain.ptr()))
-      domains.append(a.domain);
-    else
-      domains = py::list(a.domain);
-  }
-  std::vector<std::string> domain_texts;
-  std::vector<FunctionPtr> domain_callables;
-  for (const py::handle& dom : domains) {
-    if (py::isinstance<py::str>(dom)) {
-      domain_texts.push_back(dom.cast<std::string>());
-      expression_domain(domain_texts.back(), d);  // checked now, before any work
-      mesh->info.source += "; domain " + domain_texts.back();
-    } else {
-      domain_callables.push_back(std::make_shared<PythonFunction>(py::reinterpret_borrow<py::object>(dom), d,
-                                                                  std::vector<double>(d, 0.0), "the domain", 1));
-      python_code = true;
-      mesh->info.source += "; domain (python function)";
-    }
-  }
+  // Domains: the preset's, then each given one (an expression or a callable), each its own face.
+  const DomainArguments domains = domain_arguments(a.domain, d);
+  python_code = python_code || domains.python_code();
+  mesh->info.source += domains.source;
   const FunctionPtr preset_domain = preset ? preset->domain : nullptr;
-  auto make_faces = [&]() {  // each domain its own face (several: a manifold with corners)
-    std::vector<FunctionPtr> faces;
-    for (const std::string& text : domain_texts) faces.push_back(expression_domain(text, d));
-    faces.insert(faces.end(), domain_callables.begin(), domain_callables.end());
-    return faces;
-  };
 
   // The box (searching seeds; bounding the walk when given, or for a function) and the default
   // scale, as `coxmesh trace` chooses them.
@@ -133,14 +110,7 @@ std::unique_ptr<Mesh> trace(const TraceArguments& a) {
   Box search_box{std::vector<double>(d, -extent), std::vector<double>(d, extent)};
   MeshOptions mo;
   mo.trace.max_simplices = a.max_simplices;
-  if (!a.box.is_none()) {
-    const auto b = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a.box);
-    if (!b || b.size() != 2 * d)
-      throw InputError("box needs 2d = " + std::to_string(2 * d) + " numbers: (lo, hi) with d coordinates each");
-    search_box = Box{std::vector<double>(b.data(), b.data() + d), std::vector<double>(b.data() + d, b.data() + 2 * d)};
-    for (int i = 0; i < d; ++i)
-      if (!(search_box.lo[i] < search_box.hi[i])) throw InputError("box: lo must be below hi in every coordinate");
-  }
+  if (!a.box.is_none()) search_box = box_argument(a.box, d);
   // The box bounds the walk as a domain (its cells closed) when given, and for a function whose
   // seeds are searched in the default box; seeds given by hand: their whole components.
   mo.bounded_by_box = !a.box.is_none() || (from_function && a.seeds.is_none());
@@ -155,8 +125,7 @@ std::unique_ptr<Mesh> trace(const TraceArguments& a) {
 
   const Triangulation t = ambient_triangulation(a, d, default_edge);
 
-  if (!a.seeds.is_none())
-    for (const py::handle& s : a.seeds) mo.seeds.push_back(point(s, d, "a seed"));
+  mo.seeds = seed_arguments(a.seeds, d);
 
   mo.trace.progress_interval = 2048;
   mo.trace.progress = progress_callback(a);
@@ -169,8 +138,8 @@ std::unique_ptr<Mesh> trace(const TraceArguments& a) {
     MeshReport r = mesh_manifold(
         t,
         [&]() -> ManifoldFunctions {
-          if (first) return first = false, ManifoldFunctions{f, preset_domain, make_faces()};
-          return {make_f(), preset_domain, make_faces()};
+          if (first) return first = false, ManifoldFunctions{f, preset_domain, domains.faces()};
+          return {make_f(), preset_domain, domains.faces()};
         },
         mo);
     mesh->cells = std::move(r.cells);
@@ -195,6 +164,57 @@ std::unique_ptr<Mesh> trace(const TraceArguments& a) {
 }
 
 }  // namespace
+
+bool DomainArguments::python_code() const {
+  return std::any_of(given.begin(), given.end(), [](const Face& face) { return face.callable != nullptr; });
+}
+
+std::vector<FunctionPtr> DomainArguments::faces() const {
+  std::vector<FunctionPtr> faces;
+  for (const Face& face : given) faces.push_back(face.callable ? face.callable : expression_domain(face.text, d));
+  return faces;
+}
+
+DomainArguments domain_arguments(const py::object& domain, int d) {
+  DomainArguments out;
+  out.d = d;
+  py::list domains;
+  if (!domain.is_none()) {
+    if (py::isinstance<py::str>(domain) || PyCallable_Check(domain.ptr()))
+      domains.append(domain);
+    else
+      domains = py::list(domain);
+  }
+  for (const py::handle& dom : domains) {
+    if (py::isinstance<py::str>(dom)) {
+      out.given.push_back({dom.cast<std::string>(), nullptr});
+      expression_domain(out.given.back().text, d);  // checked now, before any work
+      out.source += "; domain " + out.given.back().text;
+    } else {
+      out.given.push_back({"", std::make_shared<PythonFunction>(py::reinterpret_borrow<py::object>(dom), d,
+                                                                std::vector<double>(d, 0.0), "the domain", 1)});
+      out.source += "; domain (python function)";
+    }
+  }
+  return out;
+}
+
+Box box_argument(const py::object& box, int d) {
+  const auto b = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(box);
+  if (!b || b.size() != 2 * d)
+    throw InputError("box needs 2d = " + std::to_string(2 * d) + " numbers: (lo, hi) with d coordinates each");
+  Box out{std::vector<double>(b.data(), b.data() + d), std::vector<double>(b.data() + d, b.data() + 2 * d)};
+  for (int i = 0; i < d; ++i)
+    if (!(out.lo[i] < out.hi[i])) throw InputError("box: lo must be below hi in every coordinate");
+  return out;
+}
+
+std::vector<std::vector<double>> seed_arguments(const py::object& seeds, int d) {
+  std::vector<std::vector<double>> out;
+  if (!seeds.is_none())
+    for (const py::handle& s : seeds) out.push_back(point(s, d, "a seed"));
+  return out;
+}
 
 Triangulation ambient_triangulation(const TraceArguments& a, int d, double default_edge) {
   if (!a.scale.is_none() && !a.edge_length.is_none()) throw InputError("give scale or edge_length, not both");
@@ -306,9 +326,12 @@ The manifold, one of:
                 "vertex", "winding", "local-pca"), neighbourhood, tube, blend_width,
                 pc_function ("blended", "nearest"), normals (an (n, d) array to orient by) or
                 use_normals (orient by the file's), edge_length (and the triangulation options), threads,
-                max_simplices, progress. The samples' tube bounds the walk: domain, box, seeds,
-                auto_seed and refine do not apply. summary()["point_cloud"] holds what
-                `coxmesh trace --points FILE --json` reports there (file: None for an array).
+                max_simplices, progress. The samples' tube bounds the walk; as with --points,
+                domain adds faces (the tube stays), box bounds it too, seeds join the samples and
+                refine moves the vertices onto F = 0; these need the per-vertex oracle ("auto"
+                then keeps to it). radius, minor_radius, center and auto_seed do not apply.
+                summary()["point_cloud"] holds what `coxmesh trace --points FILE --json` reports
+                there (file: None for an array).
 
 Where to start and where to stop:
   seeds         points near the manifold (projected onto it); default F's own seed, or points

@@ -8,7 +8,10 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <string>
+#include <vector>
 
+#include "coxmesh/oracle/implicit_function.h"
 #include "coxmesh/triangulation/triangulation.h"
 #include "mesh.h"
 
@@ -25,6 +28,34 @@ struct TraceArguments {
   std::string oracle, pc_function;
   bool use_normals;
 };
+
+/// The domains of `domain` (an expression, a callable X -> (n,) or a list of them) in R^d, for a
+/// function and for samples alike: each its own face (two or more: a manifold with corners,
+/// mesh_manifold.h), as --domain for `coxmesh trace`.
+struct DomainArguments {
+  struct Face {
+    std::string text;      ///< an expression: made again for every worker (not thread-safe), or
+    FunctionPtr callable;  ///< a Python callable (PythonFunction): the walk runs on one thread
+  };
+  int d = 0;
+  std::vector<Face> given;  ///< in the order given (their order in the strata and Mesh.domains(j))
+  std::string source;       ///< "; domain TEXT" for each, for Mesh.info.source
+
+  bool empty() const { return given.empty(); }
+  bool python_code() const;
+  /// The faces, new expressions each time (for one worker; needs no GIL).
+  std::vector<FunctionPtr> faces() const;
+};
+
+/// Converts `domain` (None: none), parsing the expressions now, before any work. Needs the GIL.
+/// Throws InputError.
+DomainArguments domain_arguments(const pybind11::object& domain, int d);
+
+/// `box`: (lo, hi), 2d numbers with lo below hi in every coordinate. Throws InputError.
+Box box_argument(const pybind11::object& box, int d);
+
+/// `seeds`: points of R^d (None: none). Throws InputError.
+std::vector<std::vector<double>> seed_arguments(const pybind11::object& seeds, int d);
 
 /// The ambient triangulation of R^d from triangulation, matrix, scale, edge_length and offset
 /// (default_edge: the longest edge when none of them sizes it). Throws InputError.

@@ -25,17 +25,11 @@ std::vector<double> rows(const py::object& x, const std::string& what, int& d) {
 
 std::unique_ptr<Mesh> trace_points(const TraceArguments& a) {
   if (!a.function.is_none() || !a.preset.is_none()) throw InputError("give points, function or preset: one of them");
-  for (const auto& [name, value] : {std::pair{"radius", &a.radius},
-                                    {"minor_radius", &a.minor_radius},
-                                    {"center", &a.center},
-                                    {"domain", &a.domain},
-                                    {"seeds", &a.seeds},
-                                    {"box", &a.box}})
-    if (!value->is_none())
-      throw InputError(std::string(name) + " does not apply to points: the samples' tube bounds the mesh");
-  if (a.auto_seed || a.refine)
-    throw InputError(std::string(a.auto_seed ? "auto_seed" : "refine") +
-                     " does not apply to points: the samples are the seeds, and there is no F to refine on");
+  for (const auto& [name, value] :
+       {std::pair{"radius", &a.radius}, {"minor_radius", &a.minor_radius}, {"center", &a.center}})
+    if (!value->is_none()) throw InputError(std::string(name) + " is a preset parameter; it does not apply to points");
+  if (a.auto_seed)
+    throw InputError("auto_seed does not apply to points: the samples are the seeds (add more with seeds)");
   if (a.pc_function != "blended" && a.pc_function != "nearest")
     throw InputError("pc_function must be \"blended\" or \"nearest\", not \"" + a.pc_function + "\"");
 
@@ -74,23 +68,44 @@ std::unique_ptr<Mesh> trace_points(const TraceArguments& a) {
     set = point_set_from_rows(std::move(points), d, std::move(normals));
   }
 
-  auto mesh = std::make_unique<Mesh>();
-  mesh->info.source = file.empty() ? "points (array)" : "points " + file;
+  // As `coxmesh trace --points` (src/cli/cmd_trace.cpp): the tube bounds the walk, each domain is
+  // a further face, a box bounds it too, seeds join the samples, refine works on F; only the
+  // per-vertex function allows them (mesh_point_cloud.h), so the automatic oracle keeps to it.
+  const int d_given = set.dimension;
+  const DomainArguments domains = domain_arguments(a.domain, d_given);
   MeshOptions mo;
+  if (!a.box.is_none()) {
+    mo.search_box = box_argument(a.box, d_given);
+    mo.bounded_by_box = true;
+  }
+  mo.seeds = seed_arguments(a.seeds, d_given);
+  mo.refine = a.refine;
+  po.other_bounds = !domains.empty() || !a.box.is_none() || a.refine;
+  DomainMaker make_domains;  // the tube still bounds the walk; each domain its own face
+  if (!domains.empty())
+    make_domains = [&domains](const FunctionPtr& tube) { return ManifoldFunctions{nullptr, tube, domains.faces()}; };
+
+  auto mesh = std::make_unique<Mesh>();
+  mesh->info.source = (file.empty() ? "points (array)" : "points " + file) + domains.source;
   mo.trace.max_simplices = a.max_simplices;
-  mo.trace.threads = a.threads;
+  mo.trace.threads = domains.python_code() ? 1 : a.threads;
   mo.trace.progress_interval = 2048;
   mo.trace.progress = progress_callback(a);
   {
     py::gil_scoped_release release;
     // (normals given as an array are there to be used)
     const PreparedPointCloud cloud = prepare_point_set(std::move(set), file, po, a.use_normals || !a.normals.is_none());
+    if (cloud.oracle != SampleOracle::vertex) {  // (the command line's messages, in the argument names)
+      if (!domains.empty() || !a.box.is_none())
+        throw InputError("oracle " + cloud.oracle_name() + " takes no domain or box (only the tube)");
+      if (a.refine) throw InputError("refine needs the function F; oracle " + cloud.oracle_name() + " has none");
+    }
     const int d = cloud.problem.diagnostics.ambient_dimension;
     const Triangulation t = [&] {
       py::gil_scoped_acquire gil;  // (reads the Python arguments)
       return ambient_triangulation(a, d, cloud.problem.edge_length);
     }();
-    PointCloudMeshReport r = mesh_point_cloud(t, cloud, mo);
+    PointCloudMeshReport r = mesh_point_cloud(t, cloud, mo, make_domains);
     mesh->point_cloud = point_cloud_json(cloud, r.counts);
     mesh->cells = std::move(r.mesh.cells);
     mesh->topology = std::move(r.mesh.topology);
@@ -98,12 +113,14 @@ std::unique_ptr<Mesh> trace_points(const TraceArguments& a) {
     mesh->automatic_seeds = r.mesh.automatic_seeds;
     mesh->oracle_calls = r.mesh.oracle_calls;
     mesh->warnings = std::move(r.mesh.warnings);
+    mesh->refinement = r.mesh.refinement;
     mesh->info.function_evaluations = r.mesh.function_evaluations;
     mesh->info.complete = r.mesh.status == TraceStatus::complete;
     mesh->info.message = r.mesh.message;
     mesh->timings = {{"trace_seconds", r.mesh.trace_seconds},
                      {"cell_complex_seconds", r.mesh.cell_complex_seconds},
                      {"topology_seconds", r.mesh.topology_seconds}};
+    if (r.mesh.refinement) mesh->timings["refine_seconds"] = r.mesh.refinement->seconds;
     for (int i = 0; i < d; ++i)
       for (int j = 0; j < d; ++j) mesh->info.matrix.push_back(t.matrix()(i, j));
     mesh->info.offset.assign(t.offset().data(), t.offset().data() + d);

@@ -56,6 +56,11 @@ def test_rp2_gets_the_winding_oracle():
     # Asked for the per-vertex function instead, the frames' warning comes with it.
     vertex = coxmesh.trace(points=rp2(), m=2, oracle="vertex").summary()["point_cloud"]
     assert vertex["oracle"] == "vertex" and "cannot be made consistent" in vertex["warning"]
+    # A bound besides the tube needs the per-vertex function: auto keeps to it, winding refuses it.
+    boxed = coxmesh.trace(points=rp2(), m=2, box=[-1] * 4 + [1] * 4).summary()["point_cloud"]
+    assert boxed["oracle"] == "vertex" and not boxed["frames_consistent"]
+    with pytest.raises(coxmesh.InputError, match="oracle winding takes no domain or box"):
+        coxmesh.trace(points=rp2(), m=2, oracle="winding", domain="x")
 
 
 @pytest.mark.parametrize("samples, options", [(sphere, []), (rp2, ["--m", "2"]),
@@ -114,8 +119,24 @@ def test_bad_input_raises_input_error_with_the_library_message(tmp_path):
         coxmesh.trace(points=X, oracle="nearest")
     with pytest.raises(coxmesh.InputError, match="no normals"):
         coxmesh.trace(points=X, use_normals=True)
-    with pytest.raises(coxmesh.InputError, match="does not apply to points"):
-        coxmesh.trace(points=X, box=[-1, -1, -1, 1, 1, 1])
+    with pytest.raises(coxmesh.InputError, match="radius is a preset parameter; it does not apply to points"):
+        coxmesh.trace(points=X, radius=2)
+    with pytest.raises(coxmesh.InputError, match="auto_seed does not apply to points"):
+        coxmesh.trace(points=X, auto_seed=True)
+    with pytest.raises(coxmesh.InputError, match="oracle local-pca takes no domain or box"):
+        coxmesh.trace(points=X, oracle="local-pca", domain="z")
+    with pytest.raises(coxmesh.InputError, match="oracle local-pca takes no domain or box"):
+        coxmesh.trace(points=X, oracle="local-pca", box=[-2, -2, 0, 2, 2, 2])
+    with pytest.raises(coxmesh.InputError, match="refine needs the function F; oracle local-pca has none"):
+        coxmesh.trace(points=X, oracle="local-pca", refine=True)
+    with pytest.raises(coxmesh.InputError, match="takes no domain, box, seeds"):
+        coxmesh.trace(points=X, oracle="local-pca", seeds=[[0, 0, 1]])
+    with pytest.raises(coxmesh.InputError, match="box needs 2d = 6 numbers"):
+        coxmesh.trace(points=X, box=[-1, 1])
+    with pytest.raises(coxmesh.InputError, match="coordinates"):
+        coxmesh.trace(points=X, seeds=[[0, 1]])
+    with pytest.raises(coxmesh.InputError):
+        coxmesh.trace(points=X, domain="z+")
     with pytest.raises(coxmesh.InputError, match="one of them"):
         coxmesh.trace(points=X, preset="sphere")
     with pytest.raises(coxmesh.InputError, match="expected R\\^4"):
@@ -124,3 +145,55 @@ def test_bad_input_raises_input_error_with_the_library_message(tmp_path):
         coxmesh.trace(points=str(tmp_path / "samples.las"))
     with pytest.raises(coxmesh.InputError, match="cannot open"):
         coxmesh.trace(points=str(tmp_path / "missing.xyz"))
+
+
+# domain, box, seeds and refine with samples mean what they mean for `coxmesh trace --points`: the
+# tube still bounds the walk, each domain is a further face (two: corners), a box bounds it too,
+# seeds join the samples, refine moves the vertices onto the blended F = 0.
+BOUNDED = [
+    (dict(domain="z - 0.3"), ["--domain", "z - 0.3"]),
+    (dict(domain=["z - 0.3", "x"]), ["--domain", "z - 0.3", "--domain", "x"]),
+    (dict(box=[-2, -2, -0.5, 2, 2, 2]), ["--box", "-2,-2,-0.5,2,2,2"]),
+    (dict(seeds=[[0, 0, 1.02], [0.6, 0, -0.8]]), ["--seed", "0,0,1.02", "--seed", "0.6,0,-0.8"]),
+    (dict(refine=True), ["--refine"]),
+]
+
+
+@pytest.mark.parametrize("kwargs, options", BOUNDED, ids=["domain", "corners", "box", "seeds", "refine"])
+def test_bounds_mean_what_they_mean_on_the_command_line(cli, tmp_path, kwargs, options):
+    X = sphere()
+    j = cli("trace", "--points", write_rows(tmp_path / "samples.txt", X), *options, "--json")
+    mesh = coxmesh.trace(points=X, **kwargs)
+    s = mesh.summary()
+    for key in ("cells", "boundary_cells", "betti", "euler_characteristic", "corners", "strata", "traced_simplices",
+                "is_manifold", "function_evaluations", "seeds", "automatic_seeds", "complete", "refinement"):
+        assert s.get(key) == j.get(key), key
+    assert s["point_cloud"]["oracle"] == j["point_cloud"]["oracle"] == "vertex"
+    if "domain" in kwargs or "box" in kwargs:  # a disc: the cap z < 0.3 (or z > -0.5), or its half x < 0
+        assert s["betti"] == [1, 0, 0] and s["boundary_cells"][0] > 0 and s["is_manifold"]
+        assert s["corners"] == (2 if isinstance(kwargs.get("domain"), list) else 0)
+        if s["corners"]:  # (the tube is domain 1)
+            assert sorted(x["domains"] for x in s["strata"]) == [[], [2], [2, 3], [3]]
+        assert mesh.points[:, 2].max() < 0.3 + 0.1 if "domain" in kwargs else mesh.points[:, 2].min() > -0.5 - 0.1
+    else:
+        assert s["betti"] == [1, 0, 1] and s["boundary_cells"] == [0, 0]
+    if "domain" in kwargs:
+        texts = kwargs["domain"] if isinstance(kwargs["domain"], list) else [kwargs["domain"]]
+        assert mesh.source == "points (array)" + "".join("; domain " + t for t in texts)
+    if "seeds" in kwargs:
+        assert s["seeds"] == s["automatic_seeds"] + 2
+    if "refine" in kwargs:
+        r = mesh.refinement
+        assert set(r) == {"max_abs_f_before", "max_abs_f_after", "vertices", "not_refined"}
+        assert r["max_abs_f_after"] < r["max_abs_f_before"] / 100 and r["vertices"] == s["cells"][0]
+        assert "refine_seconds" in mesh.timings and mesh.cells == coxmesh.trace(points=X).cells
+    else:
+        assert mesh.refinement is None
+
+
+def test_a_callable_domain_is_an_expression_domain():
+    X = sphere()
+    by_text = coxmesh.trace(points=X, domain=["z - 0.3", "x"])
+    by_callable = coxmesh.trace(points=X, domain=[lambda P: P[:, 2] - 0.3, "x"], threads=2)
+    assert by_callable.cells == by_text.cells and by_callable.summary()["strata"] == by_text.summary()["strata"]
+    assert by_callable.source == "points (array); domain (python function); domain x"
