@@ -33,6 +33,7 @@ check "points local-pca text" "1" "$("$bin" trace --points sphere.xyz --oracle l
 json=$("$bin" trace --points sphere.xyz --json | tr -d ' \n')
 check "points default oracle" "1 0" "$(grep -c '"oracle":"vertex"' <<<"$json") $(grep -c 'local_pca_defects' <<<"$json")"
 fails_with "points local-pca domain" "takes no --domain" "$bin" trace --points sphere.xyz --oracle local-pca --cut 0,0,1,0 --no-output
+fails_with "points auto-seed" "automatic seeds do not apply to samples" "$bin" trace --points sphere.xyz --auto-seed --no-output
 (cat sphere.xyz; head -5 sphere.xyz) > dup.xyz
 check "points duplicates" "1" "$("$bin" trace --points dup.xyz --no-output | grep -c '5 exact duplicates removed')"
 

@@ -72,6 +72,8 @@ PointCloudMeshReport mesh_point_cloud(const Triangulation& t, const PreparedPoin
                                       const DomainMaker& make_domains, const WhileTopology& while_topology) {
   PointCloudMeshReport out;
   const PointCloudProblem& p = cloud.problem;
+  // (a component that no sample is near lies outside the tube, which bounds every walk)
+  if (options.auto_seed) throw InputError("automatic seeds do not apply to samples: every sample is a seed");
   if (cloud.oracle == SampleOracle::winding || cloud.oracle == SampleOracle::local_pca) {
     // Their walks are bounded by the tube alone, and they have no F to refine on.
     if (make_domains || !options.search_box.lo.empty() || options.bounded_by_box || options.refine ||
