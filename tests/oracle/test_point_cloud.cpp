@@ -17,6 +17,7 @@
 #include "coxmesh/cell_complex/topology.h"
 #include "coxmesh/io/point_reader.h"
 #include "coxmesh/oracle/implicit_oracle.h"
+#include "coxmesh/mesh/mesh_local_pca.h"
 #include "coxmesh/tracing/local_pca_oracle.h"
 #include "coxmesh/tracing/point_cloud_problem.h"
 #include "point_samples.h"

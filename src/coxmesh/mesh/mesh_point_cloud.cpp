@@ -4,7 +4,7 @@
 #include <chrono>
 
 #include "coxmesh/mesh/mesh_winding.h"
-#include "coxmesh/tracing/local_pca_oracle.h"
+#include "coxmesh/mesh/mesh_local_pca.h"
 
 namespace coxmesh {
 

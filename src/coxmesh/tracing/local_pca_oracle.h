@@ -10,10 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "coxmesh/cell_complex/cell_complex.h"
-#include "coxmesh/cell_complex/topology.h"
 #include "coxmesh/oracle/intersection_oracle.h"
 #include "coxmesh/tracing/point_cloud_problem.h"
+#include "coxmesh/tracing/trace_manifold.h"
 
 namespace coxmesh {
 
@@ -49,20 +48,5 @@ class LocalPcaOracle final : public IntersectionOracle {
 /// facets. 0 for any per-vertex function with the exact rule (thesis §4.3): each cofacet then
 /// holds a segment of M̂ with two ends or none. Asks the oracle about each facet once.
 std::size_t count_defects(const TraceResult& traced, IntersectionOracle& oracle);
-
-struct LocalPcaResult {
-  CellComplex cells;
-  TopologyReport topology;
-  TraceStatus status = TraceStatus::complete;
-  std::string message;
-  std::size_t defects = 0;  ///< count_defects() of the trace
-  std::uint64_t oracle_calls = 0, function_evaluations = 0;
-  double trace_seconds = 0, cell_complex_seconds = 0, topology_seconds = 0;
-};
-
-/// Traces the point-cloud problem p with the local-PCA oracle on t (one thread: its walk graph is
-/// not symmetric), counts the defects, builds the cell complex and its topology. Throws InputError
-/// when no seed reaches the manifold.
-LocalPcaResult mesh_local_pca(const Triangulation& t, const PointCloudProblem& p, const TraceOptions& options = {});
 
 }  // namespace coxmesh
