@@ -50,4 +50,28 @@ TraceResult trace_manifold_distributed(const Triangulation& triangulation, Inter
                                        const std::vector<std::vector<double>>& seeds, const TraceOptions& options,
                                        Communicator& comm, DistributedTraceStats* stats = nullptr);
 
+/// One rank's share of a distributed trace, kept where it was traced (nothing gathered): the
+/// simplices of S it owns, in their global order, and S_∂ as its walk met it (by the owner of τ,
+/// not yet deduplicated nor at the owners of the (k+1)-simplices). Status and counts are the job's.
+struct TracePart {
+  int ambient_dimension = 0, codimension = 0;
+  PackedKeyIndex simplices{1};                      ///< this rank's k-simplices of S, global ids increasing
+  PointArray points;                                ///< a row of d per simplex
+  std::vector<std::uint32_t> ids;                   ///< global id (place in S) of each
+  std::uint64_t size = 0;                           ///< |S| over all ranks
+  std::vector<std::uint64_t> boundary_discoveries;  ///< per meeting: (id of τ) << 32 | cofacet
+  std::vector<std::uint32_t> boundary_keys;         ///< the packed (k+1)-simplex met
+  PointArray boundary_points;                       ///< its point (d per meeting)
+  TraceStatus status = TraceStatus::complete;
+  std::string message;
+  std::uint64_t oracle_calls = 0, function_evaluations = 0;
+  int manifold_dimension() const { return ambient_dimension - codimension; }
+};
+
+/// trace_manifold_distributed without the final gather: every rank returns its share.
+TracePart trace_part_distributed(const Triangulation& triangulation, IntersectionOracle& oracle,
+                                 SharedVertexValues& values, const VertexEvaluator& evaluate,
+                                 const std::vector<std::vector<double>>& seeds, const TraceOptions& options,
+                                 Communicator& comm, DistributedTraceStats* stats = nullptr);
+
 }  // namespace coxmesh
