@@ -9,6 +9,7 @@
 #include "commands.h"
 #include "common.h"
 #include "coxmesh/io/atomic_file.h"
+#include "coxmesh/io/native_pieces.h"
 #include "coxmesh/io/write_mesh.h"
 #include "coxmesh/mesh/mesh_distributed.h"
 #include "coxmesh/mesh/mesh_manifold.h"
@@ -208,7 +209,18 @@ void run(TraceCliOptions o) {
     if (cloud) throw InputError("point clouds are not traced by several processes yet: run without mpirun");
     if (problem.domains.size() + (problem.domain ? 1 : 0) >= 2)
       throw InputError("manifolds with corners are not traced by several processes yet: run without mpirun");
-    mo.tracer = distributed_tracer(*comm, &distributed);
+    // A .cxm file in pieces, one per process, and a manifest (native_pieces.h); other formats are
+    // written by rank 0 from the gathered trace.
+    if (write && format == MeshFormat::cxm && o.refine)
+      throw InputError(
+          "--refine does not apply to a .cxm written in pieces by several processes yet: write "
+          "another format, or run without mpirun");
+    if (write && format == MeshFormat::cxm)
+      mo.complex_tracer = distributed_complex_tracer(
+          *comm, [&](const CellComplexPart& part) { write_native_piece_file(output, comm->rank(), part); },
+          &distributed);
+    else
+      mo.tracer = distributed_tracer(*comm, &distributed);
   }
   std::optional<ProgressDisplay> progress;
   if (!o.json && !o.quiet && (!comm || comm->rank() == 0)) {
@@ -240,7 +252,8 @@ void run(TraceCliOptions o) {
     wo.native.offset.assign(t.offset().data(), t.offset().data() + d);
     wo.native.function_evaluations = r.function_evaluations;
     const auto t3 = Clock::now();
-    written = write_mesh(output, format, r.cells, wo);
+    written = mo.complex_tracer ? write_native_manifest_file(output, comm->size(), r.cells, wo.native)
+                                : write_mesh(output, format, r.cells, wo);
     write_s = seconds_since(t3);
   };
   SampleOracleCounts counts;

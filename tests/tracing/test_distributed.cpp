@@ -8,9 +8,11 @@
 #include <barrier>
 #include <cmath>
 #include <cstring>
+#include <sstream>
 #include <thread>
 
 #include "coxmesh/cell_complex/cell_complex_distributed.h"
+#include "coxmesh/io/native_format.h"
 #include "coxmesh/oracle/implicit_oracle.h"
 #include "coxmesh/tracing/trace_distributed.h"
 #include "expect_identical.h"
@@ -225,9 +227,16 @@ TEST(DistributedCellComplex, EveryLevelAsOneProcessNumbersIt) {
       EXPECT_EQ(trace.status, TraceStatus::max_simplices_reached);
     }
     const CellComplex one = build_cell_complex(std::move(trace));
-    for (int ranks : {1, 2, 3, 4})
-      expect_parts_make(one, cell_parts_on_ranks(ranks, c.t, c.f, c.domain, seeds, options),
-                        c.name + ", " + std::to_string(ranks) + " ranks");
+    std::ostringstream one_file;
+    write_native(one_file, one);
+    for (int ranks : {1, 2, 3, 4}) {
+      std::vector<CellComplexPart> parts = cell_parts_on_ranks(ranks, c.t, c.f, c.domain, seeds, options);
+      expect_parts_make(one, parts, c.name + ", " + std::to_string(ranks) + " ranks");
+      // Assembled, the parts are the complex of one process, to the byte of its .cxm file.
+      std::ostringstream assembled;
+      write_native(assembled, assemble_cell_complex(std::move(parts)));
+      EXPECT_TRUE(assembled.str() == one_file.str()) << c.name << ", " << ranks << " ranks";
+    }
   }
 }
 

@@ -5,11 +5,24 @@
 #include <algorithm>
 #include <numeric>
 
+#include "coxmesh/errors.h"
 #include "coxmesh/lattice/cofaces.h"
 
 namespace coxmesh {
 
 namespace {
+
+// Runs this rank's share of a step, then agrees with the others on whether every rank succeeded.
+template <class F>
+void agreed(Communicator& comm, F&& step) {
+  std::exception_ptr failure;
+  try {
+    step();
+  } catch (...) {
+    failure = std::current_exception();
+  }
+  agree_on_failure(comm, failure);
+}
 
 int owner_of(const std::uint32_t* key, int d, int ranks) {
   return owner_rank(reinterpret_cast<const std::int32_t*>(key), d, ranks);  // (y, the minimal vertex, first)
@@ -58,6 +71,11 @@ std::uint64_t number_by_keys(const std::vector<std::uint64_t>& keys, std::uint64
   return std::accumulate(totals.begin(), totals.end(), std::uint64_t{0});
 }
 
+CellLevel ordered_level(const PackedKeyIndex& found, const std::vector<std::uint64_t>& first,
+                        const std::vector<std::uint32_t>& global, std::vector<std::uint64_t>& incidences,
+                        const std::vector<double>& values, int extra, std::vector<std::uint32_t>& ids,
+                        std::vector<double>* data);
+
 // The cells that `out` sends to their owners, as records (packed key, discovery key, `extra`
 // doubles), settled on each owner: numbered by their smallest discovery key (prev_size: the size
 // of the level the keys' ids are from), in global order here, with the cells they were found from
@@ -74,23 +92,36 @@ CellLevel settle(std::vector<std::vector<std::byte>>& out, int words, int extra,
   std::uint32_t key[packed_words(kMaxDimension)];
   double x[kMaxDimension];
   const std::size_t record = sizeof(std::uint32_t) * words + sizeof(std::uint64_t) + sizeof(double) * extra;
-  for (const std::byte* at = in.data(); at + record <= in.data() + in.size();) {
-    std::uint64_t discovery;
-    take(at, key, words);
-    take(at, &discovery, 1);
-    take(at, x, extra);
-    const auto [id, fresh] = found.insert(key);
-    if (fresh) {
-      first.push_back(discovery);
-      values.insert(values.end(), x, x + extra);
-    } else if (discovery < first[id]) {
-      first[id] = discovery;
-      std::copy(x, x + extra, values.begin() + static_cast<std::ptrdiff_t>(id) * extra);
+  agreed(comm, [&] {
+    for (const std::byte* at = in.data(); at + record <= in.data() + in.size();) {
+      std::uint64_t discovery;
+      take(at, key, words);
+      take(at, &discovery, 1);
+      take(at, x, extra);
+      const auto [id, fresh] = found.insert(key);
+      if (fresh) {
+        first.push_back(discovery);
+        values.insert(values.end(), x, x + extra);
+      } else if (discovery < first[id]) {
+        first[id] = discovery;
+        std::copy(x, x + extra, values.begin() + static_cast<std::ptrdiff_t>(id) * extra);
+      }
+      if (with_facets) incidences.push_back(std::uint64_t{id} << 32 | discovery >> 32);
     }
-    if (with_facets) incidences.push_back(std::uint64_t{id} << 32 | discovery >> 32);
-  }
+  });
   std::vector<std::uint32_t> global;
   size = number_by_keys(first, prev_size, comm, global);
+  CellLevel level;
+  agreed(comm, [&] { level = ordered_level(found, first, global, incidences, values, extra, ids, data); });
+  return level;
+}
+
+// The cells found here in global order (by their smallest keys `first`), with their facets.
+CellLevel ordered_level(const PackedKeyIndex& found, const std::vector<std::uint64_t>& first,
+                        const std::vector<std::uint32_t>& global, std::vector<std::uint64_t>& incidences,
+                        const std::vector<double>& values, int extra, std::vector<std::uint32_t>& ids,
+                        std::vector<double>* data) {
+  const int words = found.words();
   const std::uint32_t n = found.size();
   std::vector<std::uint32_t> order(n), place(n);
   std::iota(order.begin(), order.end(), 0u);
@@ -129,17 +160,19 @@ CellLevel next_level(const CellLevel& prev, const std::vector<std::uint32_t>& pr
   std::vector<std::vector<std::byte>> out(ranks);
   CofaceEnumerator cofaces;
   std::uint32_t key[packed_words(kMaxDimension)];
-  for (std::uint32_t c = 0; c < prev.size(); ++c) {
-    std::uint64_t discovery = std::uint64_t{prev_ids[c]} << 32;
-    cofaces.reset(prev.simplices.simplex(c, d), l);
-    while (const Simplex* nu = cofaces.next()) {
-      pack(*nu, key);
-      std::vector<std::byte>& o = out[owner_of(key, d, ranks)];
-      put(o, key, words);
-      put(o, &discovery, 1);
-      ++discovery;
+  agreed(comm, [&] {
+    for (std::uint32_t c = 0; c < prev.size(); ++c) {
+      std::uint64_t discovery = std::uint64_t{prev_ids[c]} << 32;
+      cofaces.reset(prev.simplices.simplex(c, d), l);
+      while (const Simplex* nu = cofaces.next()) {
+        pack(*nu, key);
+        std::vector<std::byte>& o = out[owner_of(key, d, ranks)];
+        put(o, key, words);
+        put(o, &discovery, 1);
+        ++discovery;
+      }
     }
-  }
+  });
   return settle(out, words, 0, true, prev_size, comm, ids, size, nullptr);
 }
 
@@ -212,6 +245,145 @@ CellComplexPart build_cell_complex_distributed(TracePart&& trace, Communicator& 
   for (auto* levels : {&cc.interior, &cc.boundary})
     for (CellLevel& l : *levels) l.simplices.release_index();
   return part;
+}
+
+CellComplex assemble_cell_complex(std::vector<CellComplexPart>&& parts) {
+  if (parts.empty()) throw InputError("no part of a cell complex to assemble");
+  CellComplex cc;
+  const CellComplexPart& first = parts[0];
+  const int d = first.cells.ambient_dimension;
+  cc.ambient_dimension = d;
+  cc.manifold_dimension = first.cells.manifold_dimension;
+  const int words = packed_words(d);
+  for (const CellComplexPart& p : parts)
+    if (p.cells.ambient_dimension != d || p.cells.manifold_dimension != cc.manifold_dimension ||
+        p.interior_sizes != first.interior_sizes || p.boundary_sizes != first.boundary_sizes ||
+        p.cells.interior.size() != first.interior_sizes.size() ||
+        p.cells.boundary.size() != first.boundary_sizes.size())
+      throw InputError("the parts of the cell complex do not agree on its shape");
+  for (int kind = 0; kind < 2; ++kind) {
+    const std::vector<std::uint64_t>& sizes = kind ? first.boundary_sizes : first.interior_sizes;
+    std::vector<CellLevel>& levels = kind ? cc.boundary : cc.interior;
+    for (std::size_t j = 0; j < sizes.size(); ++j) {
+      const std::uint64_t n = sizes[j];
+      if (n >= PackedKeyIndex::kAbsent) throw InputError("too many cells in a level");
+      // Where each cell is: (part << 32 | index there), by global id.
+      std::vector<std::uint64_t> where(n, ~std::uint64_t{0});
+      std::uint64_t entries = 0;
+      bool boundary_facets = false;
+      for (std::size_t p = 0; p < parts.size(); ++p) {
+        const CellLevel& mine = kind ? parts[p].cells.boundary[j] : parts[p].cells.interior[j];
+        const std::vector<std::uint32_t>& ids = kind ? parts[p].boundary_ids[j] : parts[p].interior_ids[j];
+        if (ids.size() != mine.size()) throw InputError("a part of the cell complex has cells without ids");
+        for (std::uint32_t c = 0; c < mine.size(); ++c) {
+          if (ids[c] >= n || where[ids[c]] != ~std::uint64_t{0})
+            throw InputError("the parts of the cell complex do not number its cells once each");
+          where[ids[c]] = std::uint64_t{p} << 32 | c;
+        }
+        entries += mine.facet_ids.size();
+        boundary_facets |= !mine.boundary_facet.empty();
+      }
+      CellLevel level;
+      level.simplices = PackedKeyIndex(words);
+      level.simplices.reserve(n);
+      level.facet_offsets.assign(n + 1, 0);
+      level.facet_ids.reserve(entries);
+      if (boundary_facets) level.boundary_facet.resize(n);
+      for (std::uint64_t g = 0; g < n; ++g) {
+        if (where[g] == ~std::uint64_t{0}) throw InputError("a cell of the complex is in no part");
+        const CellComplexPart& part = parts[where[g] >> 32];
+        const CellLevel& mine = kind ? part.cells.boundary[j] : part.cells.interior[j];
+        const auto c = static_cast<std::uint32_t>(where[g]);
+        if (!level.simplices.insert(mine.simplices.key(c)).second)
+          throw InputError("a simplex appears twice in a level of the cell complex");
+        const auto f = mine.facets(c);
+        level.facet_ids.insert(level.facet_ids.end(), f.begin(), f.end());
+        level.facet_offsets[g + 1] = static_cast<std::uint32_t>(level.facet_ids.size());
+        if (boundary_facets)
+          level.boundary_facet[g] = mine.boundary_facet.empty() ? CellLevel::kNone : mine.boundary_facet[c];
+        if (j == 0) {
+          const PointArray& from = kind ? part.cells.boundary_vertices : part.cells.vertices;
+          PointArray& to = kind ? cc.boundary_vertices : cc.vertices;
+          to.insert(to.end(), from.data() + std::size_t{c} * d, from.data() + (std::size_t{c} + 1) * d);
+        }
+      }
+      level.simplices.release_index();
+      levels.push_back(std::move(level));
+      for (CellComplexPart& p : parts) (kind ? p.cells.boundary : p.cells.interior)[j] = CellLevel{};  // (memory)
+    }
+  }
+  parts.clear();
+  return cc;
+}
+
+namespace {
+
+void put_level(std::vector<std::byte>& out, const CellLevel& l, const std::vector<std::uint32_t>& ids) {
+  const std::uint64_t shape[] = {l.size(), l.facet_ids.size(), l.boundary_facet.size()};
+  put(out, shape, 3);
+  if (l.size()) put(out, l.simplices.key(0), std::size_t{l.size()} * l.simplices.words());
+  put(out, l.facet_offsets.data(), l.facet_offsets.size());
+  put(out, l.facet_ids.data(), l.facet_ids.size());
+  put(out, l.boundary_facet.data(), l.boundary_facet.size());
+  put(out, ids.data(), ids.size());
+}
+
+CellLevel take_level(const std::byte*& in, int words, std::vector<std::uint32_t>& ids) {
+  std::uint64_t shape[3];
+  take(in, shape, 3);
+  CellLevel l;
+  l.simplices = PackedKeyIndex(words);
+  l.simplices.reserve(shape[0]);
+  std::uint32_t key[packed_words(kMaxDimension)] = {};
+  for (std::uint64_t c = 0; c < shape[0]; ++c) take(in, key, words), l.simplices.insert(key);
+  l.facet_offsets.resize(shape[0] + 1);
+  take(in, l.facet_offsets.data(), l.facet_offsets.size());
+  l.facet_ids.resize(shape[1]);
+  take(in, l.facet_ids.data(), shape[1]);
+  l.boundary_facet.resize(shape[2]);
+  take(in, l.boundary_facet.data(), shape[2]);
+  ids.resize(shape[0]);
+  take(in, ids.data(), shape[0]);
+  return l;
+}
+
+}  // namespace
+
+CellComplex gather_cell_complex(CellComplexPart&& part, Communicator& comm) {
+  std::vector<std::byte> mine;
+  {
+    const CellComplex& cc = part.cells;
+    const std::uint64_t shape[] = {cc.interior.size(), cc.boundary.size(), cc.vertices.size(),
+                                   cc.boundary_vertices.size()};
+    put(mine, shape, 4);
+    for (std::size_t j = 0; j < cc.interior.size(); ++j) put_level(mine, cc.interior[j], part.interior_ids[j]);
+    for (std::size_t j = 0; j < cc.boundary.size(); ++j) put_level(mine, cc.boundary[j], part.boundary_ids[j]);
+    put(mine, cc.vertices.data(), cc.vertices.size());
+    put(mine, cc.boundary_vertices.data(), cc.boundary_vertices.size());
+  }
+  const int d = part.cells.ambient_dimension, m = part.cells.manifold_dimension, words = packed_words(d);
+  const std::vector<std::uint64_t> interior_sizes = part.interior_sizes, boundary_sizes = part.boundary_sizes;
+  part = CellComplexPart{};  // (memory: the bytes hold it now)
+  std::vector<std::size_t> counts;
+  const std::vector<std::byte> all = comm.gather_to_root(mine, counts);
+  mine = {};
+  if (comm.rank() != 0) return {};
+  std::vector<CellComplexPart> parts(comm.size());
+  const std::byte* in = all.data();
+  for (CellComplexPart& p : parts) {
+    std::uint64_t shape[4];
+    take(in, shape, 4);
+    p.cells.ambient_dimension = d, p.cells.manifold_dimension = m;
+    p.interior_sizes = interior_sizes, p.boundary_sizes = boundary_sizes;
+    p.interior_ids.resize(shape[0]), p.boundary_ids.resize(shape[1]);
+    for (std::size_t j = 0; j < shape[0]; ++j) p.cells.interior.push_back(take_level(in, words, p.interior_ids[j]));
+    for (std::size_t j = 0; j < shape[1]; ++j) p.cells.boundary.push_back(take_level(in, words, p.boundary_ids[j]));
+    p.cells.vertices.resize(shape[2]);
+    take(in, p.cells.vertices.data(), shape[2]);
+    p.cells.boundary_vertices.resize(shape[3]);
+    take(in, p.cells.boundary_vertices.data(), shape[3]);
+  }
+  return assemble_cell_complex(std::move(parts));
 }
 
 }  // namespace coxmesh

@@ -31,4 +31,12 @@ struct CellComplexPart {
 /// its cells and the incidences that cross to or from it.
 CellComplexPart build_cell_complex_distributed(TracePart&& trace, Communicator& comm);
 
+/// The whole complex from all the parts (in any order), each cell at its global id: the one
+/// build_cell_complex builds in one process. Throws InputError unless the parts cover every level
+/// exactly once and agree on its shape.
+CellComplex assemble_cell_complex(std::vector<CellComplexPart>&& parts);
+
+/// The whole complex on rank 0 (assembled from every rank's part), an empty one elsewhere. Collective.
+CellComplex gather_cell_complex(CellComplexPart&& part, Communicator& comm);
+
 }  // namespace coxmesh

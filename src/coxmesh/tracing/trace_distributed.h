@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <exception>
 #include <functional>
 #include <vector>
 
@@ -36,6 +37,12 @@ int owner_rank(const std::int32_t* v, int d, int ranks);
 /// between ranks, smaller ones split a small manifold in high dimension more evenly (SO(3) in R^9:
 /// 60 % of S on one of 2 ranks with blocks of 4^9 vertices, 51 % with 2^9).
 constexpr int owner_block_bits(int d) { return d >= 5 ? 1 : (6 + d / 2) / d; }
+
+/// Rethrows on every rank the failure of the first rank that failed (nullptr: none here), with its
+/// type (InputError, SeedError, EvaluationError, std::bad_alloc, else std::runtime_error) and
+/// message. Collective: every phase that may fail on one rank ends in it, so that no rank waits
+/// for a rank that gave up.
+void agree_on_failure(Communicator& comm, std::exception_ptr failure);
 
 /// trace_manifold(T, oracle, seeds, options) split between the ranks of `comm`; every rank calls it
 /// with the same arguments. Each rank walks the simplices it owns, level by level; the simplices it

@@ -27,9 +27,14 @@ enum class ErrorKind : std::uint8_t { other, input, seed, evaluation, memory };
 
 }  // namespace
 
-void DistributedWalk::agree(std::exception_ptr failure) {
+void DistributedWalk::agree(std::exception_ptr failure) { agree_on_failure(comm_, failure); }
+
+}  // namespace walk
+
+void agree_on_failure(Communicator& comm, std::exception_ptr failure) {
+  using walk::ErrorKind;
   std::uint64_t failed = failure ? 1 : 0;
-  comm_.sum(&failed, 1);
+  comm.sum(&failed, 1);
   if (failed == 0) return;
   std::vector<std::byte> mine;
   if (failure) {
@@ -53,7 +58,7 @@ void DistributedWalk::agree(std::exception_ptr failure) {
     put(mine, message.data(), message.size());
   }
   std::vector<std::size_t> counts;
-  const std::vector<std::byte> all = comm_.all_gather(mine, counts);
+  const std::vector<std::byte> all = comm.all_gather(mine, counts);
   // Every rank throws the failure of the first rank that failed.
   std::size_t at = 0;
   int r = 0;
@@ -73,6 +78,8 @@ void DistributedWalk::agree(std::exception_ptr failure) {
       throw std::runtime_error(message);
   }
 }
+
+namespace walk {
 
 // The values of F (and D) at a vertex this rank owns, evaluated now if no one has.
 void DistributedWalk::evaluate_here(const std::int32_t* v, double* out) {
