@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # End-to-end tests of `mpirun -n P coxmesh trace` ($COXMESH = the binary, $MPIEXEC = mpirun): for
 # P = 1, 2, 3 on this machine, the file and the JSON summary (timings, memory and the file's name
-# aside) are byte for byte those of one process with one thread, F evaluations included; a failure
+# aside) are byte for byte those of one process with one thread, F evaluations included (a .cxm
+# written in pieces, merged by `coxmesh convert`); a failure
 # of F on one rank stops every rank with one error line and a non-zero status.
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
@@ -13,7 +14,7 @@ mpi() {  # mpi P ARGS...: coxmesh ARGS on P processes, ended after 120 s (a hang
   local n=$1; shift
   timeout 120 "$mpiexec" --oversubscribe -n "$n" "$bin" "$@"
 }
-stable() { grep -v -E '"(path|[a-z_]*seconds|peak_memory_bytes)"' "$1"; }
+stable() { grep -v -E '"(path|[a-z_]*seconds|peak_memory_bytes|cell_complex_bytes)"' "$1"; }
 
 same_as_one_process() {  # same_as_one_process NAME TRACE-ARGS...
   local name=$1; shift
@@ -26,7 +27,14 @@ same_as_one_process() {  # same_as_one_process NAME TRACE-ARGS...
     [[ $n -eq 1 ]] && threads=(--threads 1)
     mpi "$n" trace "$@" "${threads[@]}" --json -o "$name.$n.cxm" > "$name.$n.json" 2> "$name.$n.err" || status=$?
     check "$name, $n processes: exit status" 0 "$status"
-    check "$name, $n processes: the same file" "same" "$(cmp -s "$name.cxm" "$name.$n.cxm" && echo same || echo different)"
+    # (several processes write a piece each and a manifest; convert merges them into one file)
+    local merged=$name.$n.cxm
+    if [[ $n -gt 1 ]]; then
+      check "$name, $n processes: one piece per process" "$n" "$(ls "$name.$n"_*.cxm | wc -l)"
+      merged=$name.$n.merged.cxm
+      "$bin" convert -q "$name.$n.cxm" "$merged"
+    fi
+    check "$name, $n processes: the same file" "same" "$(cmp -s "$name.cxm" "$merged" && echo same || echo different)"
     check "$name, $n processes: the same summary" "$(stable "$name.json")" "$(stable "$name.$n.json")"
   done
   # F once per lattice vertex in the whole job: the count is that of one process.
@@ -52,6 +60,16 @@ for n in 2 3; do
   check "NaN, $n processes: one error line" 1 "$(grep -c '^coxmesh: error: the function is not finite' nan.err)"
   check "NaN, $n processes: nothing on stdout, no file" "0 no" "$(wc -c < nan.out) $([ -e nan.cxm ] && echo yes || echo no)"
 done
+# Other formats: rank 0 writes the whole file, the one of one process.
+"$bin" trace --preset torus --threads 1 -q -o torus.vtu
+mpi 2 trace --preset torus -q -o torus.2.vtu
+check "vtu, 2 processes: the same file" same "$(cmp -s torus.vtu torus.2.vtu && echo same || echo different)"
+# A piece that cannot be written (rank 1's name is a directory): every rank stops, no manifest.
+mkdir fail_1.cxm
+status=0
+mpi 2 trace --preset torus -q -o fail.cxm > fail.out 2> fail.err || status=$?
+check "a piece not written: non-zero status, one error line, no manifest" "1 1 no" \
+  "$((status != 0)) $(grep -c '^coxmesh: error:' fail.err) $([ -e fail.cxm ] && echo yes || echo no)"
 # Bad input: every rank meets it at once; rank 0 says it.
 status=0
 mpi 2 trace --function "x^2+" --json > bad.out 2> bad.err || status=$?
