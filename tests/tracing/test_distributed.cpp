@@ -118,11 +118,12 @@ TraceResult trace_on_ranks(int ranks, const Triangulation& t, const FunctionPtr&
   return root;
 }
 
-// Traces and builds the cell complex on `ranks` threads; returns every rank's part.
+// Traces and builds the cell complex on `ranks` threads; returns every rank's part, and the whole
+// complex gathered on rank 0 in `gathered`.
 std::vector<CellComplexPart> cell_parts_on_ranks(int ranks, const Triangulation& t, const FunctionPtr& f,
                                                  const FunctionPtr& domain,
                                                  const std::vector<std::vector<double>>& seeds,
-                                                 const TraceOptions& options) {
+                                                 const TraceOptions& options, CellComplex* gathered) {
   Mailboxes mailboxes(ranks);
   std::vector<CellComplexPart> parts(ranks);
   std::vector<std::thread> threads;
@@ -139,6 +140,11 @@ std::vector<CellComplexPart> cell_parts_on_ranks(int ranks, const Triangulation&
       };
       parts[r] = build_cell_complex_distributed(
           trace_part_distributed(t, oracle, *values, evaluate, seeds, options, comm), comm);
+      if (gathered) {
+        CellComplexPart copy = parts[r];
+        CellComplex whole = gather_cell_complex(std::move(copy), comm);
+        if (r == 0) *gathered = std::move(whole);
+      }
     });
   for (auto& thread : threads) thread.join();
   return parts;
@@ -230,12 +236,15 @@ TEST(DistributedCellComplex, EveryLevelAsOneProcessNumbersIt) {
     std::ostringstream one_file;
     write_native(one_file, one);
     for (int ranks : {1, 2, 3, 4}) {
-      std::vector<CellComplexPart> parts = cell_parts_on_ranks(ranks, c.t, c.f, c.domain, seeds, options);
+      CellComplex gathered;
+      std::vector<CellComplexPart> parts = cell_parts_on_ranks(ranks, c.t, c.f, c.domain, seeds, options, &gathered);
       expect_parts_make(one, parts, c.name + ", " + std::to_string(ranks) + " ranks");
-      // Assembled, the parts are the complex of one process, to the byte of its .cxm file.
-      std::ostringstream assembled;
+      // Assembled or gathered, the parts are the complex of one process, to the byte of its file.
+      std::ostringstream assembled, on_rank_0;
       write_native(assembled, assemble_cell_complex(std::move(parts)));
+      write_native(on_rank_0, gathered);
       EXPECT_TRUE(assembled.str() == one_file.str()) << c.name << ", " << ranks << " ranks";
+      EXPECT_TRUE(on_rank_0.str() == one_file.str()) << c.name << ", " << ranks << " ranks, gathered";
     }
   }
 }

@@ -71,26 +71,54 @@ std::uint64_t number_by_keys(const std::vector<std::uint64_t>& keys, std::uint64
   return std::accumulate(totals.begin(), totals.end(), std::uint64_t{0});
 }
 
-CellLevel ordered_level(const PackedKeyIndex& found, const std::vector<std::uint64_t>& first,
-                        const std::vector<std::uint32_t>& global, std::vector<std::uint64_t>& incidences,
-                        const std::vector<double>& values, int extra, std::vector<std::uint32_t>& ids,
-                        std::vector<double>* data);
+// The cells of a level that reach their owner (this rank), each with a discovery key (packed key,
+// discovery key, `extra` doubles): per cell its smallest key and that key's extra values, and, with
+// `facets`, every cell it was found from. Records for this rank are added as they are made; the
+// others arrive in one exchange.
+struct Arrivals {
+  Arrivals(int words, int extra, bool facets) : found(words), extra(extra), facets(facets) {}
 
-// The cells that `out` sends to their owners, as records (packed key, discovery key, `extra`
-// doubles), settled on each owner: numbered by their smallest discovery key (prev_size: the size
-// of the level the keys' ids are from), in global order here, with the cells they were found from
-// as facets (`with_facets`) and the extra values of the smallest key in `data`.
-CellLevel settle(std::vector<std::vector<std::byte>>& out, int words, int extra, bool with_facets,
-                 std::uint64_t prev_size, Communicator& comm, std::vector<std::uint32_t>& ids, std::uint64_t& size,
-                 std::vector<double>* data) {
-  std::vector<std::size_t> counts;
-  const std::vector<std::byte> in = comm.exchange(out, counts);
-  out.clear();
-  PackedKeyIndex found(words);
+  void add(const std::uint32_t* key, std::uint64_t discovery, const double* x) {
+    const auto [id, fresh] = found.insert(key);
+    if (fresh) {
+      first.push_back(discovery);
+      values.insert(values.end(), x, x + extra);
+    } else if (discovery < first[id]) {
+      first[id] = discovery;
+      std::copy(x, x + extra, values.begin() + static_cast<std::ptrdiff_t>(id) * extra);
+    }
+    if (facets) incidences.push_back(std::uint64_t{id} << 32 | discovery >> 32);
+  }
+  // A record for `owner`: added here, or appended to its message.
+  void send(std::vector<std::vector<std::byte>>& out, int owner, int rank, const std::uint32_t* key,
+            std::uint64_t discovery, const double* x) {
+    if (owner == rank) return add(key, discovery, x);
+    put(out[owner], key, found.words());
+    put(out[owner], &discovery, 1);
+    put(out[owner], x, extra);
+  }
+
+  PackedKeyIndex found;
+  int extra;
+  bool facets;
   std::vector<std::uint64_t> first, incidences;  // incidences: (cell here) << 32 | facet
   std::vector<double> values;
-  std::uint32_t key[packed_words(kMaxDimension)];
-  double x[kMaxDimension];
+};
+
+CellLevel ordered_level(Arrivals& a, const std::vector<std::uint32_t>& global, std::vector<std::uint32_t>& ids,
+                        std::vector<double>* data);
+
+// The level that `arrivals` and the messages `out` make, settled on each owner: numbered by the
+// cells' smallest discovery keys (prev_size: the size of the level the keys' ids are from), in
+// global order here, with their facets and the extra values of the smallest key in `data`.
+CellLevel settle(Arrivals& arrivals, std::vector<std::vector<std::byte>>& out, std::uint64_t prev_size,
+                 Communicator& comm, std::vector<std::uint32_t>& ids, std::uint64_t& size, std::vector<double>* data) {
+  std::vector<std::size_t> counts;
+  std::vector<std::byte> in = comm.exchange(out, counts);
+  out.clear();
+  const int words = arrivals.found.words(), extra = arrivals.extra;
+  std::uint32_t key[packed_words(kMaxDimension)] = {};
+  double x[kMaxDimension] = {};
   const std::size_t record = sizeof(std::uint32_t) * words + sizeof(std::uint64_t) + sizeof(double) * extra;
   agreed(comm, [&] {
     for (const std::byte* at = in.data(); at + record <= in.data() + in.size();) {
@@ -98,30 +126,25 @@ CellLevel settle(std::vector<std::vector<std::byte>>& out, int words, int extra,
       take(at, key, words);
       take(at, &discovery, 1);
       take(at, x, extra);
-      const auto [id, fresh] = found.insert(key);
-      if (fresh) {
-        first.push_back(discovery);
-        values.insert(values.end(), x, x + extra);
-      } else if (discovery < first[id]) {
-        first[id] = discovery;
-        std::copy(x, x + extra, values.begin() + static_cast<std::ptrdiff_t>(id) * extra);
-      }
-      if (with_facets) incidences.push_back(std::uint64_t{id} << 32 | discovery >> 32);
+      arrivals.add(key, discovery, x);
     }
   });
+  in = {};
   std::vector<std::uint32_t> global;
-  size = number_by_keys(first, prev_size, comm, global);
+  size = number_by_keys(arrivals.first, prev_size, comm, global);
   CellLevel level;
-  agreed(comm, [&] { level = ordered_level(found, first, global, incidences, values, extra, ids, data); });
+  agreed(comm, [&] { level = ordered_level(arrivals, global, ids, data); });
   return level;
 }
 
-// The cells found here in global order (by their smallest keys `first`), with their facets.
-CellLevel ordered_level(const PackedKeyIndex& found, const std::vector<std::uint64_t>& first,
-                        const std::vector<std::uint32_t>& global, std::vector<std::uint64_t>& incidences,
-                        const std::vector<double>& values, int extra, std::vector<std::uint32_t>& ids,
+// The cells that arrived here in global order (by their smallest keys), with their facets.
+CellLevel ordered_level(Arrivals& a, const std::vector<std::uint32_t>& global, std::vector<std::uint32_t>& ids,
                         std::vector<double>* data) {
-  const int words = found.words();
+  const PackedKeyIndex& found = a.found;
+  const std::vector<std::uint64_t>& first = a.first;
+  std::vector<std::uint64_t>& incidences = a.incidences;
+  const std::vector<double>& values = a.values;
+  const int words = found.words(), extra = a.extra;
   const std::uint32_t n = found.size();
   std::vector<std::uint32_t> order(n), place(n);
   std::iota(order.begin(), order.end(), 0u);
@@ -158,6 +181,8 @@ CellLevel next_level(const CellLevel& prev, const std::vector<std::uint32_t>& pr
                      int l, Communicator& comm, std::vector<std::uint32_t>& ids, std::uint64_t& size) {
   const int words = packed_words(d), ranks = comm.size();
   std::vector<std::vector<std::byte>> out(ranks);
+  Arrivals arrivals(words, 0, true);
+  const double no_values = 0;  // (no extra values at this level)
   CofaceEnumerator cofaces;
   std::uint32_t key[packed_words(kMaxDimension)];
   agreed(comm, [&] {
@@ -166,14 +191,11 @@ CellLevel next_level(const CellLevel& prev, const std::vector<std::uint32_t>& pr
       cofaces.reset(prev.simplices.simplex(c, d), l);
       while (const Simplex* nu = cofaces.next()) {
         pack(*nu, key);
-        std::vector<std::byte>& o = out[owner_of(key, d, ranks)];
-        put(o, key, words);
-        put(o, &discovery, 1);
-        ++discovery;
+        arrivals.send(out, owner_of(key, d, ranks), comm.rank(), key, discovery++, &no_values);
       }
     }
   });
-  return settle(out, words, 0, true, prev_size, comm, ids, size, nullptr);
+  return settle(arrivals, out, prev_size, comm, ids, size, nullptr);
 }
 
 }  // namespace
@@ -195,17 +217,16 @@ CellComplexPart build_cell_complex_distributed(TracePart&& trace, Communicator& 
     // S_∂ at the owners of its (k+1)-simplices: the first meeting (smallest key) numbers it and
     // gives its point, as in the gathered trace (walk_distributed_exchange.cpp).
     std::vector<std::vector<std::byte>> out(comm.size());
+    Arrivals arrivals(words, d, false);
     for (std::size_t i = 0; i < trace.boundary_discoveries.size(); ++i) {
       const std::uint32_t* key = trace.boundary_keys.data() + i * words;
-      std::vector<std::byte>& o = out[owner_of(key, d, comm.size())];
-      put(o, key, words);
-      put(o, &trace.boundary_discoveries[i], 1);
-      put(o, trace.boundary_points.data() + i * d, d);
+      arrivals.send(out, owner_of(key, d, comm.size()), comm.rank(), key, trace.boundary_discoveries[i],
+                    trace.boundary_points.data() + i * d);
     }
     std::vector<std::uint32_t> ids;
     std::uint64_t size = 0;
     std::vector<double> points;
-    cc.boundary.push_back(settle(out, words, d, false, trace.size, comm, ids, size, &points));
+    cc.boundary.push_back(settle(arrivals, out, trace.size, comm, ids, size, &points));
     cc.boundary_vertices.assign(points.begin(), points.end());
     part.boundary_ids.push_back(std::move(ids));
     part.boundary_sizes.push_back(size);
@@ -247,6 +268,112 @@ CellComplexPart build_cell_complex_distributed(TracePart&& trace, Communicator& 
   return part;
 }
 
+namespace {
+
+// One part's cells of one level, wherever they are (a CellComplexPart, or a message).
+struct LevelView {
+  std::uint32_t n = 0;
+  std::uint64_t facet_entries = 0;
+  const std::uint32_t *keys = nullptr, *offsets = nullptr, *facets = nullptr, *boundary_facet = nullptr, *ids = nullptr;
+  const double* rows = nullptr;  // vertex coordinates (level 0)
+};
+
+LevelView view_of(const CellLevel& l, const std::vector<std::uint32_t>& ids, const PointArray* rows) {
+  if (ids.size() != l.size()) throw InputError("a part of the cell complex has cells without ids");
+  return {l.size(),
+          l.facet_ids.size(),
+          l.size() ? l.simplices.key(0) : nullptr,
+          l.facet_offsets.data(),
+          l.facet_ids.data(),
+          l.boundary_facet.empty() ? nullptr : l.boundary_facet.data(),
+          ids.data(),
+          rows ? rows->data() : nullptr};
+}
+
+// The level of n cells from the views of every part, each cell at its global id; with `rows`
+// (level 0) the vertex coordinates too. Throws InputError unless every cell is in one part.
+CellLevel assemble_level(const std::vector<LevelView>& views, std::uint64_t n, int d, PointArray* rows) {
+  if (n >= PackedKeyIndex::kAbsent) throw InputError("too many cells in a level");
+  std::vector<std::uint64_t> where(n, ~std::uint64_t{0});  // per global id: part << 32 | index there
+  std::uint64_t entries = 0;
+  bool boundary_facets = false;
+  for (std::size_t p = 0; p < views.size(); ++p) {
+    const LevelView& v = views[p];
+    for (std::uint32_t c = 0; c < v.n; ++c) {
+      if (v.ids[c] >= n || where[v.ids[c]] != ~std::uint64_t{0})
+        throw InputError("the parts of the cell complex do not number its cells once each");
+      where[v.ids[c]] = std::uint64_t{p} << 32 | c;
+    }
+    entries += v.facet_entries;
+    boundary_facets |= v.boundary_facet != nullptr;
+  }
+  const int words = packed_words(d);
+  CellLevel level;
+  level.simplices = PackedKeyIndex(words);
+  level.simplices.reserve(n);
+  level.facet_offsets.assign(n + 1, 0);
+  level.facet_ids.reserve(entries);
+  if (boundary_facets) level.boundary_facet.resize(n);
+  if (rows) rows->reserve(n * d);
+  for (std::uint64_t g = 0; g < n; ++g) {
+    if (where[g] == ~std::uint64_t{0}) throw InputError("a cell of the complex is in no part");
+    const LevelView& v = views[where[g] >> 32];
+    const auto c = static_cast<std::uint32_t>(where[g]);
+    if (!level.simplices.insert(v.keys + std::size_t{c} * words).second)
+      throw InputError("a simplex appears twice in a level of the cell complex");
+    if (v.offsets[c] > v.offsets[c + 1] || v.offsets[c + 1] > v.facet_entries)
+      throw InputError("a part of the cell complex has bad facet offsets");
+    level.facet_ids.insert(level.facet_ids.end(), v.facets + v.offsets[c], v.facets + v.offsets[c + 1]);
+    if (level.facet_ids.size() >= (std::uint64_t{1} << 32)) throw InputError("too many facets in a level");
+    level.facet_offsets[g + 1] = static_cast<std::uint32_t>(level.facet_ids.size());
+    if (boundary_facets) level.boundary_facet[g] = v.boundary_facet ? v.boundary_facet[c] : CellLevel::kNone;
+    if (rows) rows->insert(rows->end(), v.rows + std::size_t{c} * d, v.rows + (std::size_t{c} + 1) * d);
+  }
+  level.simplices.release_index();
+  return level;
+}
+
+// One part's level as a message, and the view of such a message.
+void put_level(std::vector<std::byte>& out, const CellLevel& l, const std::vector<std::uint32_t>& ids,
+               const PointArray* rows) {
+  const std::size_t start = out.size();
+  const std::uint64_t shape[] = {l.size(), l.facet_ids.size(), l.boundary_facet.size(), rows ? rows->size() : 0};
+  put(out, shape, 4);
+  if (l.size()) put(out, l.simplices.key(0), std::size_t{l.size()} * l.simplices.words());
+  put(out, l.facet_offsets.data(), l.facet_offsets.size());
+  put(out, l.facet_ids.data(), l.facet_ids.size());
+  put(out, l.boundary_facet.data(), l.boundary_facet.size());
+  put(out, ids.data(), ids.size());
+  out.resize(out.size() + (out.size() - start) % 8);  // (the rows aligned: see view_message)
+  if (rows) put(out, rows->data(), rows->size());
+}
+
+LevelView view_message(const std::byte* in, int words) {
+  // (every array of a message starts at a multiple of 4 bytes from its start, the rows at 8; the
+  // gathered bytes of a rank start at a multiple of 8, as every message is padded to one)
+  const std::byte* const start = in;
+  std::uint64_t shape[4];
+  take(in, shape, 4);
+  const auto at = [&](std::size_t count) {
+    const auto* p = reinterpret_cast<const std::uint32_t*>(in);
+    in += count * sizeof(std::uint32_t);
+    return p;
+  };
+  LevelView v;
+  v.n = static_cast<std::uint32_t>(shape[0]);
+  v.facet_entries = shape[1];
+  v.keys = at(shape[0] * words);
+  v.offsets = at(shape[0] + 1);
+  v.facets = at(shape[1]);
+  v.boundary_facet = shape[2] ? at(shape[2]) : nullptr;
+  v.ids = at(shape[0]);
+  in += (in - start) % 8;
+  v.rows = shape[3] ? reinterpret_cast<const double*>(in) : nullptr;
+  return v;
+}
+
+}  // namespace
+
 CellComplex assemble_cell_complex(std::vector<CellComplexPart>&& parts) {
   if (parts.empty()) throw InputError("no part of a cell complex to assemble");
   CellComplex cc;
@@ -254,7 +381,6 @@ CellComplex assemble_cell_complex(std::vector<CellComplexPart>&& parts) {
   const int d = first.cells.ambient_dimension;
   cc.ambient_dimension = d;
   cc.manifold_dimension = first.cells.manifold_dimension;
-  const int words = packed_words(d);
   for (const CellComplexPart& p : parts)
     if (p.cells.ambient_dimension != d || p.cells.manifold_dimension != cc.manifold_dimension ||
         p.interior_sizes != first.interior_sizes || p.boundary_sizes != first.boundary_sizes ||
@@ -262,53 +388,16 @@ CellComplex assemble_cell_complex(std::vector<CellComplexPart>&& parts) {
         p.cells.boundary.size() != first.boundary_sizes.size())
       throw InputError("the parts of the cell complex do not agree on its shape");
   for (int kind = 0; kind < 2; ++kind) {
-    const std::vector<std::uint64_t>& sizes = kind ? first.boundary_sizes : first.interior_sizes;
-    std::vector<CellLevel>& levels = kind ? cc.boundary : cc.interior;
+    const std::vector<std::uint64_t> sizes = kind ? first.boundary_sizes : first.interior_sizes;
     for (std::size_t j = 0; j < sizes.size(); ++j) {
-      const std::uint64_t n = sizes[j];
-      if (n >= PackedKeyIndex::kAbsent) throw InputError("too many cells in a level");
-      // Where each cell is: (part << 32 | index there), by global id.
-      std::vector<std::uint64_t> where(n, ~std::uint64_t{0});
-      std::uint64_t entries = 0;
-      bool boundary_facets = false;
-      for (std::size_t p = 0; p < parts.size(); ++p) {
-        const CellLevel& mine = kind ? parts[p].cells.boundary[j] : parts[p].cells.interior[j];
-        const std::vector<std::uint32_t>& ids = kind ? parts[p].boundary_ids[j] : parts[p].interior_ids[j];
-        if (ids.size() != mine.size()) throw InputError("a part of the cell complex has cells without ids");
-        for (std::uint32_t c = 0; c < mine.size(); ++c) {
-          if (ids[c] >= n || where[ids[c]] != ~std::uint64_t{0})
-            throw InputError("the parts of the cell complex do not number its cells once each");
-          where[ids[c]] = std::uint64_t{p} << 32 | c;
-        }
-        entries += mine.facet_ids.size();
-        boundary_facets |= !mine.boundary_facet.empty();
+      std::vector<LevelView> views;
+      for (const CellComplexPart& p : parts) {
+        const PointArray* rows = j > 0 ? nullptr : kind ? &p.cells.boundary_vertices : &p.cells.vertices;
+        views.push_back(view_of(kind ? p.cells.boundary[j] : p.cells.interior[j],
+                                kind ? p.boundary_ids[j] : p.interior_ids[j], rows));
       }
-      CellLevel level;
-      level.simplices = PackedKeyIndex(words);
-      level.simplices.reserve(n);
-      level.facet_offsets.assign(n + 1, 0);
-      level.facet_ids.reserve(entries);
-      if (boundary_facets) level.boundary_facet.resize(n);
-      for (std::uint64_t g = 0; g < n; ++g) {
-        if (where[g] == ~std::uint64_t{0}) throw InputError("a cell of the complex is in no part");
-        const CellComplexPart& part = parts[where[g] >> 32];
-        const CellLevel& mine = kind ? part.cells.boundary[j] : part.cells.interior[j];
-        const auto c = static_cast<std::uint32_t>(where[g]);
-        if (!level.simplices.insert(mine.simplices.key(c)).second)
-          throw InputError("a simplex appears twice in a level of the cell complex");
-        const auto f = mine.facets(c);
-        level.facet_ids.insert(level.facet_ids.end(), f.begin(), f.end());
-        level.facet_offsets[g + 1] = static_cast<std::uint32_t>(level.facet_ids.size());
-        if (boundary_facets)
-          level.boundary_facet[g] = mine.boundary_facet.empty() ? CellLevel::kNone : mine.boundary_facet[c];
-        if (j == 0) {
-          const PointArray& from = kind ? part.cells.boundary_vertices : part.cells.vertices;
-          PointArray& to = kind ? cc.boundary_vertices : cc.vertices;
-          to.insert(to.end(), from.data() + std::size_t{c} * d, from.data() + (std::size_t{c} + 1) * d);
-        }
-      }
-      level.simplices.release_index();
-      levels.push_back(std::move(level));
+      PointArray* rows = j > 0 ? nullptr : kind ? &cc.boundary_vertices : &cc.vertices;
+      (kind ? cc.boundary : cc.interior).push_back(assemble_level(views, sizes[j], d, rows));
       for (CellComplexPart& p : parts) (kind ? p.cells.boundary : p.cells.interior)[j] = CellLevel{};  // (memory)
     }
   }
@@ -316,74 +405,35 @@ CellComplex assemble_cell_complex(std::vector<CellComplexPart>&& parts) {
   return cc;
 }
 
-namespace {
-
-void put_level(std::vector<std::byte>& out, const CellLevel& l, const std::vector<std::uint32_t>& ids) {
-  const std::uint64_t shape[] = {l.size(), l.facet_ids.size(), l.boundary_facet.size()};
-  put(out, shape, 3);
-  if (l.size()) put(out, l.simplices.key(0), std::size_t{l.size()} * l.simplices.words());
-  put(out, l.facet_offsets.data(), l.facet_offsets.size());
-  put(out, l.facet_ids.data(), l.facet_ids.size());
-  put(out, l.boundary_facet.data(), l.boundary_facet.size());
-  put(out, ids.data(), ids.size());
-}
-
-CellLevel take_level(const std::byte*& in, int words, std::vector<std::uint32_t>& ids) {
-  std::uint64_t shape[3];
-  take(in, shape, 3);
-  CellLevel l;
-  l.simplices = PackedKeyIndex(words);
-  l.simplices.reserve(shape[0]);
-  std::uint32_t key[packed_words(kMaxDimension)] = {};
-  for (std::uint64_t c = 0; c < shape[0]; ++c) take(in, key, words), l.simplices.insert(key);
-  l.facet_offsets.resize(shape[0] + 1);
-  take(in, l.facet_offsets.data(), l.facet_offsets.size());
-  l.facet_ids.resize(shape[1]);
-  take(in, l.facet_ids.data(), shape[1]);
-  l.boundary_facet.resize(shape[2]);
-  take(in, l.boundary_facet.data(), shape[2]);
-  ids.resize(shape[0]);
-  take(in, ids.data(), shape[0]);
-  return l;
-}
-
-}  // namespace
-
+// Level by level, so that rank 0 holds the complex and one level's messages at most.
 CellComplex gather_cell_complex(CellComplexPart&& part, Communicator& comm) {
-  std::vector<std::byte> mine;
-  {
-    const CellComplex& cc = part.cells;
-    const std::uint64_t shape[] = {cc.interior.size(), cc.boundary.size(), cc.vertices.size(),
-                                   cc.boundary_vertices.size()};
-    put(mine, shape, 4);
-    for (std::size_t j = 0; j < cc.interior.size(); ++j) put_level(mine, cc.interior[j], part.interior_ids[j]);
-    for (std::size_t j = 0; j < cc.boundary.size(); ++j) put_level(mine, cc.boundary[j], part.boundary_ids[j]);
-    put(mine, cc.vertices.data(), cc.vertices.size());
-    put(mine, cc.boundary_vertices.data(), cc.boundary_vertices.size());
+  CellComplex cc;
+  const int d = part.cells.ambient_dimension, words = packed_words(d);
+  cc.ambient_dimension = d;
+  cc.manifold_dimension = part.cells.manifold_dimension;
+  for (int kind = 0; kind < 2; ++kind) {
+    const std::vector<std::uint64_t> sizes = kind ? part.boundary_sizes : part.interior_sizes;
+    for (std::size_t j = 0; j < sizes.size(); ++j) {
+      CellLevel& mine = kind ? part.cells.boundary[j] : part.cells.interior[j];
+      PointArray* my_rows = j > 0 ? nullptr : kind ? &part.cells.boundary_vertices : &part.cells.vertices;
+      std::vector<std::byte> message;
+      put_level(message, mine, kind ? part.boundary_ids[j] : part.interior_ids[j], my_rows);
+      message.resize((message.size() + 7) / 8 * 8);  // (the next rank's doubles stay aligned)
+      mine = CellLevel{};
+      if (my_rows) *my_rows = PointArray{};
+      std::vector<std::size_t> counts;
+      const std::vector<std::byte> all = comm.gather_to_root(message, counts);
+      message = {};
+      if (comm.rank() != 0) continue;
+      std::vector<LevelView> views;
+      const std::byte* at = all.data();
+      for (const std::size_t count : counts) views.push_back(view_message(at, words)), at += count;
+      PointArray* rows = j > 0 ? nullptr : kind ? &cc.boundary_vertices : &cc.vertices;
+      (kind ? cc.boundary : cc.interior).push_back(assemble_level(views, sizes[j], d, rows));
+    }
   }
-  const int d = part.cells.ambient_dimension, m = part.cells.manifold_dimension, words = packed_words(d);
-  const std::vector<std::uint64_t> interior_sizes = part.interior_sizes, boundary_sizes = part.boundary_sizes;
-  part = CellComplexPart{};  // (memory: the bytes hold it now)
-  std::vector<std::size_t> counts;
-  const std::vector<std::byte> all = comm.gather_to_root(mine, counts);
-  mine = {};
-  if (comm.rank() != 0) return {};
-  std::vector<CellComplexPart> parts(comm.size());
-  const std::byte* in = all.data();
-  for (CellComplexPart& p : parts) {
-    std::uint64_t shape[4];
-    take(in, shape, 4);
-    p.cells.ambient_dimension = d, p.cells.manifold_dimension = m;
-    p.interior_sizes = interior_sizes, p.boundary_sizes = boundary_sizes;
-    p.interior_ids.resize(shape[0]), p.boundary_ids.resize(shape[1]);
-    for (std::size_t j = 0; j < shape[0]; ++j) p.cells.interior.push_back(take_level(in, words, p.interior_ids[j]));
-    for (std::size_t j = 0; j < shape[1]; ++j) p.cells.boundary.push_back(take_level(in, words, p.boundary_ids[j]));
-    p.cells.vertices.resize(shape[2]);
-    take(in, p.cells.vertices.data(), shape[2]);
-    p.cells.boundary_vertices.resize(shape[3]);
-    take(in, p.cells.boundary_vertices.data(), shape[3]);
-  }
-  return assemble_cell_complex(std::move(parts));
+  part = CellComplexPart{};
+  return comm.rank() == 0 ? std::move(cc) : CellComplex{};
 }
 
 }  // namespace coxmesh

@@ -41,8 +41,10 @@ ComplexTracer distributed_complex_tracer(Communicator& comm, PartWriter write_pa
   return [&comm, write_part, stats](const Triangulation& t, const ManifoldFunctions& m,
                                     const std::vector<std::vector<double>>& seeds, const TraceOptions& options,
                                     TraceResult& traced) {
-    RankOracle r(t, m);
-    TracePart part = trace_part_distributed(t, r.oracle, *r.values, r.evaluate, seeds, options, comm, stats);
+    TracePart part = [&] {  // (the vertex values go before the complex is built)
+      RankOracle r(t, m);
+      return trace_part_distributed(t, r.oracle, *r.values, r.evaluate, seeds, options, comm, stats);
+    }();
     traced.ambient_dimension = part.ambient_dimension;
     traced.codimension = part.codimension;
     traced.status = part.status;
