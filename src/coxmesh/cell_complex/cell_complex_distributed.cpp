@@ -140,6 +140,7 @@ CellLevel settle(Arrivals& arrivals, std::vector<std::vector<std::byte>>& out, s
 // The cells that arrived here in global order (by their smallest keys), with their facets.
 CellLevel ordered_level(Arrivals& a, const std::vector<std::uint32_t>& global, std::vector<std::uint32_t>& ids,
                         std::vector<double>* data) {
+  a.found.release_index();  // (the keys are all it needs now)
   const PackedKeyIndex& found = a.found;
   const std::vector<std::uint64_t>& first = a.first;
   std::vector<std::uint64_t>& incidences = a.incidences;
@@ -232,6 +233,9 @@ CellComplexPart build_cell_complex_distributed(TracePart&& trace, Communicator& 
     part.boundary_sizes.push_back(size);
     has_boundary = size > 0;
   }
+  // Hash tables only while a look-up needs them (a boundary level, for the boundary facets of the
+  // interior level above it): they are a quarter to a third of a level's memory.
+  cc.interior[0].simplices.release_index();
   for (int j = 1; j <= m; ++j) {
     std::vector<std::uint32_t> ids;
     std::uint64_t size = 0;
@@ -239,28 +243,28 @@ CellComplexPart build_cell_complex_distributed(TracePart&& trace, Communicator& 
                                      comm, ids, size));
     part.interior_ids.push_back(std::move(ids));
     part.interior_sizes.push_back(size);
-    if (has_boundary && j <= m - 1) {
-      cc.boundary.push_back(next_level(cc.boundary[j - 1], part.boundary_ids[j - 1], part.boundary_sizes[j - 1], d,
-                                       k + 1 + j, comm, ids, size));
-      part.boundary_ids.push_back(std::move(ids));
-      part.boundary_sizes.push_back(size);
-    }
-  }
-  if (!has_boundary) {  // empty levels, uniform shape
-    cc.boundary.resize(std::max(m, 0));
-    part.boundary_ids.resize(cc.boundary.size());
-    part.boundary_sizes.resize(cc.boundary.size());
-  }
-  // A cut cell's boundary cell lies on the same simplex, hence on the same rank.
-  if (has_boundary)
-    for (int j = 1; j <= m; ++j) {
-      CellLevel& level = cc.interior[j];
+    CellLevel& level = cc.interior[j];
+    level.simplices.release_index();
+    if (has_boundary) {  // (a cut cell's boundary cell lies on the same simplex, hence here)
       level.boundary_facet.resize(level.size());
       for (std::uint32_t c = 0; c < level.size(); ++c) {
         const std::uint32_t b = cc.boundary[j - 1].simplices.find(level.simplices.key(c));
         level.boundary_facet[c] = b == PackedKeyIndex::kAbsent ? CellLevel::kNone : part.boundary_ids[j - 1][b];
       }
     }
+    if (has_boundary && j <= m - 1) {
+      cc.boundary.push_back(next_level(cc.boundary[j - 1], part.boundary_ids[j - 1], part.boundary_sizes[j - 1], d,
+                                       k + 1 + j, comm, ids, size));
+      part.boundary_ids.push_back(std::move(ids));
+      part.boundary_sizes.push_back(size);
+    }
+    if (j - 1 < static_cast<int>(cc.boundary.size())) cc.boundary[j - 1].simplices.release_index();
+  }
+  if (!has_boundary) {  // empty levels, uniform shape
+    cc.boundary.resize(std::max(m, 0));
+    part.boundary_ids.resize(cc.boundary.size());
+    part.boundary_sizes.resize(cc.boundary.size());
+  }
   for (auto& l : cc.boundary)
     if (l.simplices.words() != words) l.simplices = PackedKeyIndex(words);
   for (auto* levels : {&cc.interior, &cc.boundary})
