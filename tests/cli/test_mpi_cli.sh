@@ -64,6 +64,48 @@ done
 "$bin" trace --preset torus --threads 1 -q -o torus.vtu
 mpi 2 trace --preset torus -q -o torus.2.vtu
 check "vtu, 2 processes: the same file" same "$(cmp -s torus.vtu torus.2.vtu && echo same || echo different)"
+# .pvtu: a .vtu piece per process and the manifest. Read back (with python3's vtk, when installed),
+# the pieces hold each cell of one process's .vtu once (the same vertices, by their global ids).
+vtk_python=
+for p in python3 /usr/bin/python3; do
+  if "$p" -c "import vtk" 2> /dev/null; then vtk_python=$p; break; fi
+done
+same_cells_as_one_process() {  # NAME TRACE-ARGS...
+  local name=$1; shift
+  "$bin" trace "$@" --threads 1 -q -o "$name.vtu"
+  local status=0
+  mpi 3 trace "$@" -q -o "$name.pvtu" 2> "$name.pvtu.err" || status=$?
+  check "$name .pvtu, 3 processes: exit status and pieces" "0 3" "$status $(ls "$name"_*.vtu | wc -l)"
+  if [[ -n $vtk_python ]]; then
+    check "$name .pvtu: the cells of one process" same "$("$vtk_python" - "$name" << 'EOF'
+import sys, vtk
+from vtk.util.numpy_support import vtk_to_numpy
+def cells(grid, ids):
+    out = []
+    for c in range(grid.GetNumberOfCells()):
+        points = grid.GetCell(c).GetPointIds()
+        out.append(tuple(sorted(int(ids[points.GetId(i)]) for i in range(points.GetNumberOfIds()))))
+    return sorted(out)
+def read(reader, name):
+    reader.SetFileName(name)
+    reader.Update()
+    return reader.GetOutput()
+one = read(vtk.vtkXMLUnstructuredGridReader(), sys.argv[1] + ".vtu")
+pieces = read(vtk.vtkXMLPUnstructuredGridReader(), sys.argv[1] + ".pvtu")
+ids = vtk_to_numpy(pieces.GetPointData().GetArray("global_id"))
+xs, ys = vtk_to_numpy(pieces.GetPoints().GetData()), vtk_to_numpy(one.GetPoints().GetData())
+same = cells(one, range(one.GetNumberOfPoints())) == cells(pieces, ids) and (xs == ys[ids]).all()
+print("same" if same else "different")
+EOF
+)"
+  fi
+}
+same_cells_as_one_process curve-pieces --preset moment-curve
+same_cells_as_one_process surface-pieces --preset torus --box -2,-2,-0.1,2,2,2
+same_cells_as_one_process solid-pieces --preset sphere --m 3 --dim 4 --edge-length 0.3
+status=0
+"$bin" trace --preset torus -q -o one-process.pvtu 2> pvtu.err || status=$?
+check ".pvtu without mpirun: refused with one error line" "1 1" "$((status != 0)) $(grep -c '^coxmesh: error:' pvtu.err)"
 # A piece that cannot be written (rank 1's name is a directory): every rank stops, no manifest.
 mkdir fail_1.cxm
 status=0

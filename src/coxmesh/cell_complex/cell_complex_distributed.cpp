@@ -4,9 +4,12 @@
 
 #include <algorithm>
 #include <numeric>
+#include <span>
+#include <stdexcept>
 
 #include "coxmesh/errors.h"
 #include "coxmesh/lattice/cofaces.h"
+#include "coxmesh/lattice/faces.h"
 
 namespace coxmesh {
 
@@ -438,6 +441,193 @@ CellComplex gather_cell_complex(CellComplexPart&& part, Communicator& comm) {
   }
   part = CellComplexPart{};
   return comm.rank() == 0 ? std::move(cc) : CellComplex{};
+}
+
+namespace {
+
+// The cells of one level of a closure, in the order they join it.
+struct ClosureLevel {
+  explicit ClosureLevel(int words) : keys(words) {}
+  PackedKeyIndex keys;  // (indexed: a cell joins once)
+  std::vector<std::uint32_t> ids, facet_offsets{0}, facets, boundary_facet;
+  std::vector<double> rows;
+
+  void add(const std::uint32_t* key, std::uint32_t id, std::span<const std::uint32_t> f, std::uint32_t bf,
+           const double* row, int d) {
+    keys.insert(key);
+    ids.push_back(id);
+    facets.insert(facets.end(), f.begin(), f.end());
+    facet_offsets.push_back(static_cast<std::uint32_t>(facets.size()));
+    boundary_facet.push_back(bf);
+    if (row) rows.insert(rows.end(), row, row + d);
+  }
+};
+
+}  // namespace
+
+CellClosure closure_for_writing(CellComplexPart& part, Communicator& comm) {
+  CellComplex& cc = part.cells;
+  const int d = cc.ambient_dimension, m = cc.manifold_dimension, words = packed_words(d);
+  const int ranks = comm.size(), rank = comm.rank();
+  const int top[2] = {std::min(m, 3), m >= 1 ? std::min({m, 3, m - 1}) : -1};  // interior, boundary
+  std::vector<ClosureLevel> levels[2];
+  for (int kind = 0; kind < 2; ++kind) {
+    for (int j = 0; j <= top[kind]; ++j) {
+      levels[kind].emplace_back(words);
+      (kind ? cc.boundary : cc.interior)[j].simplices.reindex();
+    }
+  }
+  // Cell c of this rank's level j of a kind, into the closure.
+  const auto add_own = [&](int kind, int j, std::uint32_t c) {
+    const CellLevel& l = kind ? cc.boundary[j] : cc.interior[j];
+    const PointArray& rows = kind ? cc.boundary_vertices : cc.vertices;
+    levels[kind][j].add(l.simplices.key(c), (kind ? part.boundary_ids : part.interior_ids)[j][c], l.facets(c),
+                        l.boundary_facet.empty() ? CellLevel::kNone : l.boundary_facet[c],
+                        j == 0 ? rows.data() + std::size_t{c} * d : nullptr, d);
+  };
+  for (int kind = 0; kind < 2; ++kind)
+    if (top[kind] >= 0)
+      for (std::uint32_t c = 0; c < (kind ? cc.boundary : cc.interior)[top[kind]].size(); ++c)
+        add_own(kind, top[kind], c);
+  // Level by level downwards: the faces of the closure's cells that are cells, from their owners.
+  for (int j = std::max(top[0], top[1]); j >= 1; --j) {
+    std::vector<std::vector<std::byte>> requests(ranks);
+    PackedKeyIndex seen[2] = {PackedKeyIndex(words), PackedKeyIndex(words)};
+    agreed(comm, [&] {
+      const auto candidate = [&](int kind, const std::uint32_t* key) {
+        if (j - 1 > top[kind] || !seen[kind].insert(key).second) return;
+        if (levels[kind][j - 1].keys.find(key) != PackedKeyIndex::kAbsent) return;
+        const int owner = owner_of(key, d, ranks);
+        if (owner == rank) {
+          const std::uint32_t c = (kind ? cc.boundary : cc.interior)[j - 1].simplices.find(key);
+          if (c != PackedKeyIndex::kAbsent) add_own(kind, j - 1, c);
+          return;
+        }
+        const std::uint32_t k = static_cast<std::uint32_t>(kind);
+        put(requests[owner], &k, 1);
+        put(requests[owner], key, words);
+      };
+      std::uint32_t key[packed_words(kMaxDimension)];
+      FaceEnumerator faces;
+      for (int kind = 0; kind < 2; ++kind) {
+        if (j > top[kind]) continue;
+        const ClosureLevel& level = levels[kind][j];
+        for (std::uint32_t i = 0; i < level.ids.size(); ++i) {
+          const Simplex s = level.keys.simplex(i, d);
+          faces.reset(s, s.dimension() - 1);
+          for (Simplex f; faces.next(f);) pack(f, key), candidate(kind, key);
+          if (kind == 0 && level.boundary_facet[i] != CellLevel::kNone) candidate(1, level.keys.key(i));
+        }
+      }
+    });
+    std::vector<std::size_t> counts;
+    const std::vector<std::byte> asked = comm.exchange(requests, counts);
+    std::vector<std::vector<std::byte>> replies(ranks);
+    agreed(comm, [&] {
+      const std::byte* in = asked.data();
+      std::uint32_t key[packed_words(kMaxDimension)];
+      for (int r = 0; r < ranks; ++r)
+        for (std::size_t n = counts[r] / (sizeof(std::uint32_t) * (words + 1)); n > 0; --n) {
+          std::uint32_t kind;
+          take(in, &kind, 1);
+          take(in, key, words);
+          const CellLevel& l = kind ? cc.boundary[j - 1] : cc.interior[j - 1];
+          const std::uint32_t c = l.simplices.find(key);
+          const std::uint32_t found = c != PackedKeyIndex::kAbsent;
+          put(replies[r], &found, 1);
+          if (!found) continue;
+          const std::uint32_t id = (kind ? part.boundary_ids : part.interior_ids)[j - 1][c];
+          const auto f = l.facets(c);
+          const std::uint32_t nf = static_cast<std::uint32_t>(f.size());
+          const std::uint32_t bf = l.boundary_facet.empty() ? CellLevel::kNone : l.boundary_facet[c];
+          put(replies[r], &id, 1);
+          put(replies[r], &nf, 1);
+          put(replies[r], f.data(), f.size());
+          put(replies[r], &bf, 1);
+          if (j - 1 == 0) put(replies[r], (kind ? cc.boundary_vertices : cc.vertices).data() + std::size_t{c} * d, d);
+        }
+    });
+    const std::vector<std::byte> answers = comm.exchange(replies, counts);
+    agreed(comm, [&] {
+      const std::byte* in = answers.data();
+      std::vector<std::uint32_t> f;
+      double row[kMaxDimension];
+      for (int r = 0; r < ranks; ++r) {
+        const std::byte* q = requests[r].data();
+        for (std::size_t n = requests[r].size() / (sizeof(std::uint32_t) * (words + 1)); n > 0; --n) {
+          std::uint32_t kind, found;
+          take(q, &kind, 1);
+          const auto* key = reinterpret_cast<const std::uint32_t*>(q);
+          q += sizeof(std::uint32_t) * words;
+          take(in, &found, 1);
+          if (!found) continue;
+          std::uint32_t id, nf, bf;
+          take(in, &id, 1);
+          take(in, &nf, 1);
+          f.resize(nf);
+          take(in, f.data(), nf);
+          take(in, &bf, 1);
+          if (j - 1 == 0) take(in, row, d);
+          levels[kind][j - 1].add(key, id, f, bf, j - 1 == 0 ? row : nullptr, d);
+        }
+      }
+    });
+  }
+  for (int kind = 0; kind < 2; ++kind)
+    for (int j = 0; j <= top[kind]; ++j) (kind ? cc.boundary : cc.interior)[j].simplices.release_index();
+
+  // Each level in global order, its facets and boundary facets renumbered into the closure.
+  CellClosure out;
+  CellComplex& local = out.cells;
+  const bool has_boundary = !part.boundary_sizes.empty() && part.boundary_sizes[0] > 0;
+  local.ambient_dimension = d;
+  local.manifold_dimension = m;
+  std::vector<std::uint32_t> sorted_ids[2][4];  // per kind and level: the global ids, increasing
+  const auto local_id = [&](int kind, int j, std::uint32_t g) {
+    const std::vector<std::uint32_t>& ids = sorted_ids[kind][j];
+    const auto at = std::lower_bound(ids.begin(), ids.end(), g);
+    if (at == ids.end() || *at != g) throw std::logic_error("closure_for_writing: a face is missing");
+    return static_cast<std::uint32_t>(at - ids.begin());
+  };
+  for (int j = 0; j <= m; ++j)
+    for (int kind = 0; kind < 2; ++kind) {
+      if (kind == 1 && j >= m) continue;
+      CellLevel level;
+      level.simplices = PackedKeyIndex(words);
+      std::vector<std::uint32_t> ids;
+      if (j <= top[kind]) {
+        ClosureLevel& from = levels[kind][j];
+        std::vector<std::uint32_t> order(from.ids.size());
+        std::iota(order.begin(), order.end(), 0u);
+        std::sort(order.begin(), order.end(),
+                  [&](std::uint32_t a, std::uint32_t b) { return from.ids[a] < from.ids[b]; });
+        for (const std::uint32_t i : order) ids.push_back(from.ids[i]);
+        sorted_ids[kind][j] = ids;
+        level.facet_offsets.assign(1, 0);
+        const bool with_bf = kind == 0 && j >= 1 && has_boundary;
+        for (const std::uint32_t i : order) {
+          level.simplices.insert(from.keys.key(i));
+          for (std::uint32_t e = from.facet_offsets[i]; e < from.facet_offsets[i + 1]; ++e)
+            level.facet_ids.push_back(local_id(kind, j - 1, from.facets[e]));
+          level.facet_offsets.push_back(static_cast<std::uint32_t>(level.facet_ids.size()));
+          if (with_bf)
+            level.boundary_facet.push_back(from.boundary_facet[i] == CellLevel::kNone
+                                               ? CellLevel::kNone
+                                               : local_id(1, j - 1, from.boundary_facet[i]));
+          if (j == 0) {
+            PointArray& rows = kind ? local.boundary_vertices : local.vertices;
+            rows.insert(rows.end(), from.rows.begin() + std::ptrdiff_t{i} * d,
+                        from.rows.begin() + (std::ptrdiff_t{i} + 1) * d);
+          }
+        }
+        level.simplices.release_index();
+      } else {
+        level.facet_offsets.assign(1, 0);
+      }
+      (kind ? local.boundary : local.interior).push_back(std::move(level));
+      (kind ? out.boundary_ids : out.interior_ids).push_back(std::move(ids));
+    }
+  return out;
 }
 
 }  // namespace coxmesh

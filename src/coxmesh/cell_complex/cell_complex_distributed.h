@@ -36,6 +36,16 @@ CellComplexPart build_cell_complex_distributed(TracePart&& trace, Communicator& 
 /// exactly once and agree on its shape.
 CellComplex assemble_cell_complex(std::vector<CellComplexPart>&& parts);
 
+/// What a rank writes of its part in a mesh file: the cells it owns of the levels the file shows
+/// (interior min(m, 3), boundary min(m, 3, m − 1)) and every face of them, fetched from their owners
+/// (a complex with ids of its own, each level in global order), with the global id of each cell.
+struct CellClosure {
+  CellComplex cells;
+  std::vector<std::vector<std::uint32_t>> interior_ids, boundary_ids;
+};
+/// Collective. The levels of `part` are indexed again (for the look-ups of the other ranks).
+CellClosure closure_for_writing(CellComplexPart& part, Communicator& comm);
+
 /// The whole complex on rank 0 (assembled from every rank's part), an empty one elsewhere. Collective.
 CellComplex gather_cell_complex(CellComplexPart&& part, Communicator& comm);
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "coxmesh/cell_complex/cell_complex_distributed.h"
+#include "coxmesh/io/mesh_formats.h"
 #include "coxmesh/mesh/mesh_manifold.h"
 #include "coxmesh/tracing/trace_distributed.h"
 #include "coxmesh/util/communicator.h"
@@ -22,14 +23,15 @@ struct DistributedPartDone {};
 ///   try { MeshReport r = mesh_manifold(t, make, mo); /* rank 0 */ } catch (const DistributedPartDone&) {}
 Tracer distributed_tracer(Communicator& comm, DistributedTraceStats* stats = nullptr);
 
-/// Writes one rank's part of the cell complex (e.g. its piece of the output file).
-using PartWriter = std::function<void(const CellComplexPart&)>;
+/// Writes one rank's part of the cell complex (e.g. its piece of the output file); may be collective.
+using PartWriter = std::function<WrittenCounts(CellComplexPart&)>;
 
 /// A MeshOptions::complex_tracer: the walk and the cell complex split over `comm`, each rank building
 /// the cells it owns (cell_complex_distributed.h) and writing them with `write_part` (every rank
-/// agrees on whether all succeeded before going on); then rank 0 gathers the whole complex for the
-/// topology and the report, and the other ranks throw DistributedPartDone.
+/// agrees on whether all succeeded before going on; `written`, if given, gets the counts summed over
+/// the ranks); then rank 0 gathers the whole complex for the topology and the report, and the other
+/// ranks throw DistributedPartDone.
 ComplexTracer distributed_complex_tracer(Communicator& comm, PartWriter write_part,
-                                         DistributedTraceStats* stats = nullptr);
+                                         DistributedTraceStats* stats = nullptr, WrittenCounts* written = nullptr);
 
 }  // namespace coxmesh
