@@ -445,22 +445,12 @@ CellComplex gather_cell_complex(CellComplexPart&& part, Communicator& comm) {
 
 namespace {
 
-// The cells of one level of a closure, in the order they join it.
-struct ClosureLevel {
-  explicit ClosureLevel(int words) : keys(words) {}
-  PackedKeyIndex keys;  // (indexed: a cell joins once)
+// The cells of one level of a closure that other ranks own, in the order they arrive.
+struct Halo {
+  explicit Halo(int words) : keys(words) {}
+  PackedKeyIndex keys;
   std::vector<std::uint32_t> ids, facet_offsets{0}, facets, boundary_facet;
   std::vector<double> rows;
-
-  void add(const std::uint32_t* key, std::uint32_t id, std::span<const std::uint32_t> f, std::uint32_t bf,
-           const double* row, int d) {
-    keys.insert(key);
-    ids.push_back(id);
-    facets.insert(facets.end(), f.begin(), f.end());
-    facet_offsets.push_back(static_cast<std::uint32_t>(facets.size()));
-    boundary_facet.push_back(bf);
-    if (row) rows.insert(rows.end(), row, row + d);
-  }
 };
 
 }  // namespace
@@ -468,123 +458,148 @@ struct ClosureLevel {
 CellClosure closure_for_writing(CellComplexPart& part, Communicator& comm) {
   CellComplex& cc = part.cells;
   const int d = cc.ambient_dimension, m = cc.manifold_dimension, words = packed_words(d);
-  const int ranks = comm.size(), rank = comm.rank();
+  const int ranks = comm.size();
   const int top[2] = {std::min(m, 3), m >= 1 ? std::min({m, 3, m - 1}) : -1};  // interior, boundary
-  std::vector<ClosureLevel> levels[2];
-  for (int kind = 0; kind < 2; ++kind) {
-    for (int j = 0; j <= top[kind]; ++j) {
-      levels[kind].emplace_back(words);
-      (kind ? cc.boundary : cc.interior)[j].simplices.reindex();
-    }
-  }
-  // Cell c of this rank's level j of a kind, into the closure.
-  const auto add_own = [&](int kind, int j, std::uint32_t c) {
-    const CellLevel& l = kind ? cc.boundary[j] : cc.interior[j];
-    const PointArray& rows = kind ? cc.boundary_vertices : cc.vertices;
-    levels[kind][j].add(l.simplices.key(c), (kind ? part.boundary_ids : part.interior_ids)[j][c], l.facets(c),
-                        l.boundary_facet.empty() ? CellLevel::kNone : l.boundary_facet[c],
-                        j == 0 ? rows.data() + std::size_t{c} * d : nullptr, d);
+  const bool has_boundary = !part.boundary_sizes.empty() && part.boundary_sizes[0] > 0;
+  const auto level_of = [&](int kind, int j) -> CellLevel& { return kind ? cc.boundary[j] : cc.interior[j]; };
+  const auto ids_of = [&](int kind, int j) -> std::vector<std::uint32_t>& {
+    return kind ? part.boundary_ids[j] : part.interior_ids[j];
   };
+  // Per level: which of this rank's cells are in the closure, and the cells of other ranks in it.
+  std::vector<std::vector<std::uint8_t>> mine[2];
+  std::vector<Halo> halo[2];
   for (int kind = 0; kind < 2; ++kind)
-    if (top[kind] >= 0)
-      for (std::uint32_t c = 0; c < (kind ? cc.boundary : cc.interior)[top[kind]].size(); ++c)
-        add_own(kind, top[kind], c);
-  // Level by level downwards: the faces of the closure's cells that are cells, from their owners.
+    for (int j = 0; j <= top[kind]; ++j) {
+      mine[kind].emplace_back(level_of(kind, j).size(), j == top[kind] ? 1 : 0);
+      halo[kind].emplace_back(words);
+    }
+  // The cell of global id g of level j of this rank, or kAbsent.
+  const auto own = [&](int kind, int j, std::uint32_t g) {
+    const std::vector<std::uint32_t>& ids = ids_of(kind, j);
+    const auto at = std::lower_bound(ids.begin(), ids.end(), g);
+    return at != ids.end() && *at == g ? static_cast<std::uint32_t>(at - ids.begin()) : PackedKeyIndex::kAbsent;
+  };
+  // Level by level downwards: the facets of the closure's cells join it; those of other ranks are
+  // asked from the owners of the faces of their cells' simplices (most cells have none).
   for (int j = std::max(top[0], top[1]); j >= 1; --j) {
     std::vector<std::vector<std::byte>> requests(ranks);
-    PackedKeyIndex seen[2] = {PackedKeyIndex(words), PackedKeyIndex(words)};
+    PackedKeyIndex asked[2] = {PackedKeyIndex(words), PackedKeyIndex(words)};
     agreed(comm, [&] {
-      const auto candidate = [&](int kind, const std::uint32_t* key) {
-        if (j - 1 > top[kind] || !seen[kind].insert(key).second) return;
-        if (levels[kind][j - 1].keys.find(key) != PackedKeyIndex::kAbsent) return;
-        const int owner = owner_of(key, d, ranks);
-        if (owner == rank) {
-          const std::uint32_t c = (kind ? cc.boundary : cc.interior)[j - 1].simplices.find(key);
-          if (c != PackedKeyIndex::kAbsent) add_own(kind, j - 1, c);
-          return;
-        }
-        const std::uint32_t k = static_cast<std::uint32_t>(kind);
-        put(requests[owner], &k, 1);
-        put(requests[owner], key, words);
-      };
       std::uint32_t key[packed_words(kMaxDimension)];
       FaceEnumerator faces;
+      const auto ask_faces = [&](int kind, const std::uint32_t* cell_key) {
+        const Simplex s = unpack(cell_key, d);
+        faces.reset(s, s.dimension() - 1);
+        for (Simplex f; faces.next(f);) {
+          pack(f, key);
+          const int owner = owner_of(key, d, ranks);
+          if (owner == comm.rank() || !asked[kind].insert(key).second) continue;
+          const std::uint32_t k = static_cast<std::uint32_t>(kind);
+          put(requests[owner], &k, 1);
+          put(requests[owner], key, words);
+        }
+      };
+      // (a cell's facets of its kind, and its boundary facet, which lies on its simplex)
+      const auto take_facets = [&](int kind, std::span<const std::uint32_t> facets, std::uint32_t bf,
+                                   const std::uint32_t* key, bool here) {
+        bool remote = false;
+        for (const std::uint32_t g : facets) {
+          const std::uint32_t c = own(kind, j - 1, g);
+          if (c == PackedKeyIndex::kAbsent)
+            remote = true;
+          else
+            mine[kind][j - 1][c] = 1;
+        }
+        if (remote) ask_faces(kind, key);
+        if (kind == 1 || bf == CellLevel::kNone) return;
+        if (here) {
+          mine[1][j - 1][own(1, j - 1, bf)] = 1;
+        } else if (asked[1].insert(key).second) {
+          const std::uint32_t k = 1;
+          put(requests[owner_of(key, d, ranks)], &k, 1);
+          put(requests[owner_of(key, d, ranks)], key, words);
+        }
+      };
       for (int kind = 0; kind < 2; ++kind) {
         if (j > top[kind]) continue;
-        const ClosureLevel& level = levels[kind][j];
-        for (std::uint32_t i = 0; i < level.ids.size(); ++i) {
-          const Simplex s = level.keys.simplex(i, d);
-          faces.reset(s, s.dimension() - 1);
-          for (Simplex f; faces.next(f);) pack(f, key), candidate(kind, key);
-          if (kind == 0 && level.boundary_facet[i] != CellLevel::kNone) candidate(1, level.keys.key(i));
-        }
+        const CellLevel& level = level_of(kind, j);
+        for (std::uint32_t c = 0; c < level.size(); ++c)
+          if (mine[kind][j][c])
+            take_facets(kind, level.facets(c),
+                        level.boundary_facet.empty() ? CellLevel::kNone : level.boundary_facet[c],
+                        level.simplices.key(c), true);
+        const Halo& h = halo[kind][j];
+        for (std::uint32_t i = 0; i < h.ids.size(); ++i)
+          take_facets(kind, {h.facets.data() + h.facet_offsets[i], h.facets.data() + h.facet_offsets[i + 1]},
+                      h.boundary_facet[i], h.keys.key(i), false);
       }
     });
+    // The owners look the asked simplices up (a hash table for this round only).
+    for (int kind = 0; kind < 2; ++kind)
+      if (j - 1 <= top[kind]) level_of(kind, j - 1).simplices.reindex();
     std::vector<std::size_t> counts;
-    const std::vector<std::byte> asked = comm.exchange(requests, counts);
+    const std::vector<std::byte> asked_here = comm.exchange(requests, counts);
     std::vector<std::vector<std::byte>> replies(ranks);
     agreed(comm, [&] {
-      const std::byte* in = asked.data();
+      const std::byte* in = asked_here.data();
       std::uint32_t key[packed_words(kMaxDimension)];
       for (int r = 0; r < ranks; ++r)
         for (std::size_t n = counts[r] / (sizeof(std::uint32_t) * (words + 1)); n > 0; --n) {
           std::uint32_t kind;
           take(in, &kind, 1);
           take(in, key, words);
-          const CellLevel& l = kind ? cc.boundary[j - 1] : cc.interior[j - 1];
+          const CellLevel& l = level_of(static_cast<int>(kind), j - 1);
           const std::uint32_t c = l.simplices.find(key);
           const std::uint32_t found = c != PackedKeyIndex::kAbsent;
           put(replies[r], &found, 1);
           if (!found) continue;
-          const std::uint32_t id = (kind ? part.boundary_ids : part.interior_ids)[j - 1][c];
           const auto f = l.facets(c);
-          const std::uint32_t nf = static_cast<std::uint32_t>(f.size());
-          const std::uint32_t bf = l.boundary_facet.empty() ? CellLevel::kNone : l.boundary_facet[c];
-          put(replies[r], &id, 1);
-          put(replies[r], &nf, 1);
+          const std::uint32_t head[] = {ids_of(static_cast<int>(kind), j - 1)[c], static_cast<std::uint32_t>(f.size()),
+                                        l.boundary_facet.empty() ? CellLevel::kNone : l.boundary_facet[c]};
+          put(replies[r], head, 3);
           put(replies[r], f.data(), f.size());
-          put(replies[r], &bf, 1);
           if (j - 1 == 0) put(replies[r], (kind ? cc.boundary_vertices : cc.vertices).data() + std::size_t{c} * d, d);
         }
     });
+    for (int kind = 0; kind < 2; ++kind)
+      if (j - 1 <= top[kind]) level_of(kind, j - 1).simplices.release_index();
     const std::vector<std::byte> answers = comm.exchange(replies, counts);
     agreed(comm, [&] {
       const std::byte* in = answers.data();
-      std::vector<std::uint32_t> f;
-      double row[kMaxDimension];
       for (int r = 0; r < ranks; ++r) {
         const std::byte* q = requests[r].data();
         for (std::size_t n = requests[r].size() / (sizeof(std::uint32_t) * (words + 1)); n > 0; --n) {
-          std::uint32_t kind, found;
+          std::uint32_t kind, found, head[3];
           take(q, &kind, 1);
           const auto* key = reinterpret_cast<const std::uint32_t*>(q);
           q += sizeof(std::uint32_t) * words;
           take(in, &found, 1);
           if (!found) continue;
-          std::uint32_t id, nf, bf;
-          take(in, &id, 1);
-          take(in, &nf, 1);
-          f.resize(nf);
-          take(in, f.data(), nf);
-          take(in, &bf, 1);
-          if (j - 1 == 0) take(in, row, d);
-          levels[kind][j - 1].add(key, id, f, bf, j - 1 == 0 ? row : nullptr, d);
+          take(in, head, 3);
+          Halo& h = halo[kind][j - 1];
+          h.keys.insert(key);
+          h.ids.push_back(head[0]);
+          h.facets.resize(h.facets.size() + head[1]);
+          take(in, h.facets.data() + h.facets.size() - head[1], head[1]);
+          h.facet_offsets.push_back(static_cast<std::uint32_t>(h.facets.size()));
+          h.boundary_facet.push_back(head[2]);
+          if (j - 1 == 0) {
+            h.rows.resize(h.rows.size() + d);
+            take(in, h.rows.data() + h.rows.size() - d, d);
+          }
         }
       }
     });
   }
-  for (int kind = 0; kind < 2; ++kind)
-    for (int j = 0; j <= top[kind]; ++j) (kind ? cc.boundary : cc.interior)[j].simplices.release_index();
 
-  // Each level in global order, its facets and boundary facets renumbered into the closure.
+  // Each level in global order (this rank's cells merged with the others'), its facets and
+  // boundary facets renumbered into the closure.
   CellClosure out;
   CellComplex& local = out.cells;
-  const bool has_boundary = !part.boundary_sizes.empty() && part.boundary_sizes[0] > 0;
   local.ambient_dimension = d;
   local.manifold_dimension = m;
-  std::vector<std::uint32_t> sorted_ids[2][4];  // per kind and level: the global ids, increasing
   const auto local_id = [&](int kind, int j, std::uint32_t g) {
-    const std::vector<std::uint32_t>& ids = sorted_ids[kind][j];
+    const std::vector<std::uint32_t>& ids = kind ? out.boundary_ids[j] : out.interior_ids[j];
     const auto at = std::lower_bound(ids.begin(), ids.end(), g);
     if (at == ids.end() || *at != g) throw std::logic_error("closure_for_writing: a face is missing");
     return static_cast<std::uint32_t>(at - ids.begin());
@@ -594,38 +609,50 @@ CellClosure closure_for_writing(CellComplexPart& part, Communicator& comm) {
       if (kind == 1 && j >= m) continue;
       CellLevel level;
       level.simplices = PackedKeyIndex(words);
-      std::vector<std::uint32_t> ids;
+      level.facet_offsets.assign(1, 0);
+      std::vector<std::uint32_t>& ids = (kind ? out.boundary_ids : out.interior_ids).emplace_back();
       if (j <= top[kind]) {
-        ClosureLevel& from = levels[kind][j];
-        std::vector<std::uint32_t> order(from.ids.size());
+        const CellLevel& from = level_of(kind, j);
+        const std::vector<std::uint32_t>& from_ids = ids_of(kind, j);
+        const Halo& h = halo[kind][j];
+        std::vector<std::uint32_t> order(h.ids.size());  // the halo by global id
         std::iota(order.begin(), order.end(), 0u);
-        std::sort(order.begin(), order.end(),
-                  [&](std::uint32_t a, std::uint32_t b) { return from.ids[a] < from.ids[b]; });
-        for (const std::uint32_t i : order) ids.push_back(from.ids[i]);
-        sorted_ids[kind][j] = ids;
-        level.facet_offsets.assign(1, 0);
+        std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return h.ids[a] < h.ids[b]; });
         const bool with_bf = kind == 0 && j >= 1 && has_boundary;
-        for (const std::uint32_t i : order) {
-          level.simplices.insert(from.keys.key(i));
-          for (std::uint32_t e = from.facet_offsets[i]; e < from.facet_offsets[i + 1]; ++e)
-            level.facet_ids.push_back(local_id(kind, j - 1, from.facets[e]));
+        const auto append = [&](std::uint32_t g, const std::uint32_t* key, std::span<const std::uint32_t> facets,
+                                std::uint32_t bf, const double* row) {
+          ids.push_back(g);
+          level.simplices.insert(key);
+          for (const std::uint32_t f : facets) level.facet_ids.push_back(local_id(kind, j - 1, f));
           level.facet_offsets.push_back(static_cast<std::uint32_t>(level.facet_ids.size()));
-          if (with_bf)
-            level.boundary_facet.push_back(from.boundary_facet[i] == CellLevel::kNone
-                                               ? CellLevel::kNone
-                                               : local_id(1, j - 1, from.boundary_facet[i]));
-          if (j == 0) {
-            PointArray& rows = kind ? local.boundary_vertices : local.vertices;
-            rows.insert(rows.end(), from.rows.begin() + std::ptrdiff_t{i} * d,
-                        from.rows.begin() + (std::ptrdiff_t{i} + 1) * d);
+          if (with_bf) level.boundary_facet.push_back(bf == CellLevel::kNone ? bf : local_id(1, j - 1, bf));
+          if (row)
+            (kind ? local.boundary_vertices : local.vertices)
+                .insert((kind ? local.boundary_vertices : local.vertices).end(), row, row + d);
+        };
+        const PointArray& rows = kind ? cc.boundary_vertices : cc.vertices;
+        std::size_t next = 0;  // in `order`
+        const auto append_halo_below = [&](std::uint64_t g) {
+          for (; next < order.size() && h.ids[order[next]] < g; ++next) {
+            const std::uint32_t i = order[next];
+            append(h.ids[i], h.keys.key(i),
+                   {h.facets.data() + h.facet_offsets[i], h.facets.data() + h.facet_offsets[i + 1]},
+                   h.boundary_facet[i], j == 0 ? h.rows.data() + std::size_t{i} * d : nullptr);
           }
-        }
+        };
+        for (std::uint32_t c = 0; c < from.size(); ++c)
+          if (mine[kind][j][c]) {
+            append_halo_below(from_ids[c]);
+            append(from_ids[c], from.simplices.key(c), from.facets(c),
+                   from.boundary_facet.empty() ? CellLevel::kNone : from.boundary_facet[c],
+                   j == 0 ? rows.data() + std::size_t{c} * d : nullptr);
+          }
+        append_halo_below(~std::uint64_t{0});
         level.simplices.release_index();
-      } else {
-        level.facet_offsets.assign(1, 0);
+        std::vector<std::uint8_t>().swap(mine[kind][j]);
+        halo[kind][j] = Halo(words);
       }
       (kind ? local.boundary : local.interior).push_back(std::move(level));
-      (kind ? out.boundary_ids : out.interior_ids).push_back(std::move(ids));
     }
   return out;
 }
