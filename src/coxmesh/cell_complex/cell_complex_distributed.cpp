@@ -46,17 +46,20 @@ std::uint64_t number_by_keys(const std::vector<std::uint64_t>& keys, std::uint64
   const std::vector<std::byte> in = comm.exchange(out, counts);
   const std::vector<std::size_t> from = counts;  // bytes of keys from each rank
   out.assign(ranks, {});
-  std::vector<std::uint64_t> received(in.size() / sizeof(std::uint64_t));
-  const std::byte* at = in.data();
-  take(at, received.data(), received.size());
-  std::vector<std::uint64_t> sorted = received;
-  std::sort(sorted.begin(), sorted.end());
+  std::vector<std::uint64_t> received, sorted;
+  agreed(comm, [&] {
+    received.resize(in.size() / sizeof(std::uint64_t));
+    const std::byte* at = in.data();
+    take(at, received.data(), received.size());
+    sorted = received;
+    std::sort(sorted.begin(), sorted.end());
+  });
   std::vector<std::byte> mine;
   const std::uint64_t here = sorted.size();
   put(mine, &here, 1);
   const std::vector<std::byte> totals_bytes = comm.all_gather(mine, counts);
   std::vector<std::uint64_t> totals(ranks);
-  at = totals_bytes.data();
+  const std::byte* at = totals_bytes.data();
   take(at, totals.data(), totals.size());
   const std::uint64_t offset = std::accumulate(totals.begin(), totals.begin() + comm.rank(), std::uint64_t{0});
   std::size_t next = 0;
@@ -431,12 +434,14 @@ CellComplex gather_cell_complex(CellComplexPart&& part, Communicator& comm) {
       std::vector<std::size_t> counts;
       const std::vector<std::byte> all = comm.gather_to_root(message, counts);
       message = {};
-      if (comm.rank() != 0) continue;
-      std::vector<LevelView> views;
-      const std::byte* at = all.data();
-      for (const std::size_t count : counts) views.push_back(view_message(at, words)), at += count;
-      PointArray* rows = j > 0 ? nullptr : kind ? &cc.boundary_vertices : &cc.vertices;
-      (kind ? cc.boundary : cc.interior).push_back(assemble_level(views, sizes[j], d, rows));
+      agreed(comm, [&] {  // (the others wait for rank 0 before the next level: it may fail)
+        if (comm.rank() != 0) return;
+        std::vector<LevelView> views;
+        const std::byte* at = all.data();
+        for (const std::size_t count : counts) views.push_back(view_message(at, words)), at += count;
+        PointArray* rows = j > 0 ? nullptr : kind ? &cc.boundary_vertices : &cc.vertices;
+        (kind ? cc.boundary : cc.interior).push_back(assemble_level(views, sizes[j], d, rows));
+      });
     }
   }
   part = CellComplexPart{};
