@@ -118,14 +118,16 @@ TraceResult trace_on_ranks(int ranks, const Triangulation& t, const FunctionPtr&
   return root;
 }
 
-// Traces and builds the cell complex on `ranks` threads; returns every rank's part, and the whole
-// complex gathered on rank 0 in `gathered`.
+// Traces and builds the cell complex on `ranks` threads; returns every rank's part, the whole
+// complex gathered on rank 0 in `gathered`, and each rank's closure for writing in `closures`.
 std::vector<CellComplexPart> cell_parts_on_ranks(int ranks, const Triangulation& t, const FunctionPtr& f,
                                                  const FunctionPtr& domain,
                                                  const std::vector<std::vector<double>>& seeds,
-                                                 const TraceOptions& options, CellComplex* gathered) {
+                                                 const TraceOptions& options, CellComplex* gathered,
+                                                 std::vector<CellClosure>* closures) {
   Mailboxes mailboxes(ranks);
   std::vector<CellComplexPart> parts(ranks);
+  if (closures) closures->assign(ranks, {});
   std::vector<std::thread> threads;
   for (int r = 0; r < ranks; ++r)
     threads.emplace_back([&, r] {
@@ -140,6 +142,10 @@ std::vector<CellComplexPart> cell_parts_on_ranks(int ranks, const Triangulation&
       };
       parts[r] = build_cell_complex_distributed(
           trace_part_distributed(t, oracle, *values, evaluate, seeds, options, comm), comm);
+      if (closures) {
+        CellComplexPart copy = parts[r];
+        (*closures)[r] = closure_for_writing(copy, comm);
+      }
       if (gathered) {
         CellComplexPart copy = parts[r];
         CellComplex whole = gather_cell_complex(std::move(copy), comm);
@@ -192,6 +198,46 @@ void expect_parts_make(const CellComplex& one, const std::vector<CellComplexPart
   }
 }
 
+// Each closure is a complex of its own (every facet in it) whose cells are those of `one` at their
+// global ids, and whose levels shown in a file are the rank's own cells.
+void expect_closures_of(const CellComplex& one, const std::vector<CellComplexPart>& parts,
+                        const std::vector<CellClosure>& closures, const std::string& what) {
+  SCOPED_TRACE(what);
+  const int d = one.ambient_dimension, m = one.manifold_dimension, words = packed_words(d);
+  const int top[2] = {std::min(m, 3), std::min({m, 3, m - 1})};
+  for (std::size_t r = 0; r < parts.size(); ++r) {
+    const CellClosure& c = closures[r];
+    for (int kind = 0; kind < 2; ++kind)
+      for (int j = 0; j <= top[kind]; ++j) {
+        const CellLevel& level = kind ? c.cells.boundary[j] : c.cells.interior[j];
+        const CellLevel& whole = kind ? one.boundary[j] : one.interior[j];
+        const std::vector<std::uint32_t>& ids = kind ? c.boundary_ids[j] : c.interior_ids[j];
+        if (j == top[kind]) {
+          EXPECT_EQ(ids, kind ? parts[r].boundary_ids[j] : parts[r].interior_ids[j]);
+        }
+        ASSERT_EQ(ids.size(), level.size());
+        for (std::uint32_t i = 0; i < level.size(); ++i) {
+          const std::uint32_t g = ids[i];
+          ASSERT_TRUE(std::equal(level.simplices.key(i), level.simplices.key(i) + words, whole.simplices.key(g)));
+          std::vector<std::uint32_t> facets;
+          for (const std::uint32_t f : level.facets(i))
+            facets.push_back((kind ? c.boundary_ids : c.interior_ids)[j - 1][f]);
+          const auto expected = whole.facets(g);
+          ASSERT_TRUE(std::equal(facets.begin(), facets.end(), expected.begin(), expected.end())) << j << ", " << g;
+          if (whole.boundary_facet.size() > 0) {
+            const std::uint32_t b = level.boundary_facet[i];
+            ASSERT_EQ(b == CellLevel::kNone ? b : c.boundary_ids[j - 1][b], whole.boundary_facet[g]);
+          }
+          if (j == 0) {
+            const double* x = (kind ? c.cells.boundary_vertices : c.cells.vertices).data() + std::size_t{i} * d;
+            const double* y = (kind ? one.boundary_vertices : one.vertices).data() + std::size_t{g} * d;
+            ASSERT_TRUE(std::equal(x, x + d, y));
+          }
+        }
+      }
+  }
+}
+
 }  // namespace
 
 TEST(DistributedCellComplex, EveryLevelAsOneProcessNumbersIt) {
@@ -237,8 +283,11 @@ TEST(DistributedCellComplex, EveryLevelAsOneProcessNumbersIt) {
     write_native(one_file, one);
     for (int ranks : {1, 2, 3, 4}) {
       CellComplex gathered;
-      std::vector<CellComplexPart> parts = cell_parts_on_ranks(ranks, c.t, c.f, c.domain, seeds, options, &gathered);
+      std::vector<CellClosure> closures;
+      std::vector<CellComplexPart> parts =
+          cell_parts_on_ranks(ranks, c.t, c.f, c.domain, seeds, options, &gathered, &closures);
       expect_parts_make(one, parts, c.name + ", " + std::to_string(ranks) + " ranks");
+      expect_closures_of(one, parts, closures, c.name + ", " + std::to_string(ranks) + " ranks");
       // Assembled or gathered, the parts are the complex of one process, to the byte of its file.
       std::ostringstream assembled, on_rank_0;
       write_native(assembled, assemble_cell_complex(std::move(parts)));
