@@ -216,8 +216,8 @@ void run(TraceCliOptions o) {
   // Under mpirun the walk is split between the processes and rank 0 reports (distributed.h).
   Communicator* const comm = MpiSession::communicator();
   DistributedTraceStats distributed;
-  WriteOptions piece_options;    // (of .pvtu pieces)
-  WrittenCounts pieces_written;  // (summed over them)
+  WriteOptions piece_options;   // (of .pvtu pieces)
+  PartCounts pieces_written{};  // (summed over them: points, cells, skipped cells)
   if (comm) {
     if (cloud) throw InputError("point clouds are not traced by several processes yet: run without mpirun");
     if (problem.domains.size() + (problem.domain ? 1 : 0) >= 2)
@@ -236,9 +236,10 @@ void run(TraceCliOptions o) {
     if (vtu_pieces)
       mo.complex_tracer = distributed_complex_tracer(
           *comm,
-          [&](CellComplexPart& part) {
-            return write_vtu_piece_file(output, comm->rank(), closure_for_writing(part, *comm), part.interior_sizes[0],
-                                        piece_options);
+          [&](CellComplexPart& part) -> PartCounts {
+            const WrittenCounts n = write_vtu_piece_file(output, comm->rank(), closure_for_writing(part, *comm),
+                                                         part.interior_sizes[0], piece_options);
+            return {n.points, n.cells, n.skipped};
           },
           &distributed, &pieces_written);
     else if (pieces)
@@ -246,7 +247,7 @@ void run(TraceCliOptions o) {
           *comm,
           [&](CellComplexPart& part) {
             write_native_piece_file(output, comm->rank(), part);
-            return WrittenCounts{};
+            return PartCounts{};
           },
           &distributed);
     else
@@ -284,7 +285,7 @@ void run(TraceCliOptions o) {
     const auto t3 = Clock::now();
     if (vtu_pieces) {
       write_pvtu_manifest_file(output, comm->size(), d, wo);
-      written = pieces_written;
+      written = {pieces_written[0], pieces_written[1], pieces_written[2]};
     } else {
       written = mo.complex_tracer ? write_native_manifest_file(output, comm->size(), r.cells, wo.native)
                                   : write_mesh(output, format, r.cells, wo);

@@ -38,7 +38,7 @@ Tracer distributed_tracer(Communicator& comm, DistributedTraceStats* stats) {
 }
 
 ComplexTracer distributed_complex_tracer(Communicator& comm, PartWriter write_part, DistributedTraceStats* stats,
-                                         WrittenCounts* written) {
+                                         PartCounts* written) {
   return [&comm, write_part, stats, written](const Triangulation& t, const ManifoldFunctions& m,
                                              const std::vector<std::vector<double>>& seeds, const TraceOptions& options,
                                              TraceResult& traced) {
@@ -55,16 +55,15 @@ ComplexTracer distributed_complex_tracer(Communicator& comm, PartWriter write_pa
     const bool empty = part.size == 0;  // (mesh_manifold says why)
     CellComplexPart cells = build_cell_complex_distributed(std::move(part), comm);
     std::exception_ptr failure;
-    WrittenCounts counts;
+    PartCounts counts{};
     try {
       if (!empty && write_part) counts = write_part(cells);
     } catch (...) {
       failure = std::current_exception();
     }
     agree_on_failure(comm, failure);
-    std::uint64_t sums[] = {counts.points, counts.cells, counts.skipped};
-    comm.sum(sums, 3);
-    if (written) *written = {sums[0], sums[1], sums[2]};
+    comm.sum(counts.data(), static_cast<int>(counts.size()));
+    if (written) *written = counts;
     CellComplex whole = gather_cell_complex(std::move(cells), comm);
     if (comm.rank() != 0) throw DistributedPartDone{};
     return whole;
