@@ -28,7 +28,8 @@ struct CellComplexPart {
 /// cells reach their owners with their discovery keys ((global id of the facet they were found
 /// from) << 32 | position among its cofaces); each owner keeps a cell's smallest key, and the level
 /// is numbered in the order of those keys, as the single process discovers it. Memory per rank:
-/// its cells and the incidences that cross to or from it.
+/// its cells and, while a level is built, that level's incidences at this rank and the records that
+/// cross to or from it.
 CellComplexPart build_cell_complex_distributed(TracePart&& trace, Communicator& comm);
 
 /// The whole complex from all the parts (in any order), each cell at its global id: the one
