@@ -1,6 +1,7 @@
 // coxmesh trace: mesh a manifold given by a preset, by equations typed as text or by samples
 // (thesis Ch. 4), report its topology and write it to a file.
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -9,6 +10,8 @@
 #include "commands.h"
 #include "common.h"
 #include "coxmesh/io/atomic_file.h"
+#include "coxmesh/io/native_pieces.h"
+#include "coxmesh/io/vtu_pieces.h"
 #include "coxmesh/io/write_mesh.h"
 #include "coxmesh/mesh/mesh_distributed.h"
 #include "coxmesh/mesh/mesh_manifold.h"
@@ -144,9 +147,18 @@ void run(TraceCliOptions o) {
   if (o.no_output && !o.output.empty()) throw InputError("--no-output contradicts -o " + o.output);
   const bool write = !output.empty();
   std::vector<double> pole;
-  const MeshFormat format = !write             ? MeshFormat::vtu
-                            : o.format.empty() ? format_of_path(output)
-                                               : parse_format(o.format);
+  // NAME.pvtu: .vtu pieces, one per process, and their manifest (vtu_pieces.h).
+  std::string extension = std::filesystem::path(output).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  const bool vtu_pieces = write && extension == ".pvtu";
+  if (vtu_pieces && !MpiSession::communicator())
+    throw InputError("-o " + output +
+                     ": a .pvtu is written in pieces by several processes (mpirun -n P, P >= 2); "
+                     "write .vtu");
+  const MeshFormat format = !write || vtu_pieces ? MeshFormat::vtu
+                            : o.format.empty()   ? format_of_path(output)
+                                                 : parse_format(o.format);
   if (write) {
     if (output == "-" && format == MeshFormat::cxm)
       throw InputError("-o -: the native format is binary; give a file name");
@@ -204,11 +216,42 @@ void run(TraceCliOptions o) {
   // Under mpirun the walk is split between the processes and rank 0 reports (distributed.h).
   Communicator* const comm = MpiSession::communicator();
   DistributedTraceStats distributed;
+  WriteOptions piece_options;   // (of .pvtu pieces)
+  PartCounts pieces_written{};  // (summed over them: points, cells, skipped cells)
   if (comm) {
     if (cloud) throw InputError("point clouds are not traced by several processes yet: run without mpirun");
     if (problem.domains.size() + (problem.domain ? 1 : 0) >= 2)
       throw InputError("manifolds with corners are not traced by several processes yet: run without mpirun");
-    mo.tracer = distributed_tracer(*comm, &distributed);
+    // .cxm and .pvtu files in pieces, one per process, and a manifest (native_pieces.h,
+    // vtu_pieces.h); other formats are written by rank 0 from the gathered trace.
+    const bool pieces = write && (format == MeshFormat::cxm || vtu_pieces);
+    if (pieces && o.refine)
+      throw InputError(
+          "--refine does not apply to a file written in pieces by several processes yet: write "
+          "another format, or run without mpirun");
+    piece_options.projection = o.project;
+    piece_options.pole = pole;
+    piece_options.simplices = o.simplices;
+    if (vtu_pieces) check_vtu_pieces(piece_options);
+    if (vtu_pieces)
+      mo.complex_tracer = distributed_complex_tracer(
+          *comm,
+          [&](CellComplexPart& part) -> PartCounts {
+            const WrittenCounts n = write_vtu_piece_file(output, comm->rank(), closure_for_writing(part, *comm),
+                                                         part.interior_sizes[0], piece_options);
+            return {n.points, n.cells, n.skipped};
+          },
+          &distributed, &pieces_written);
+    else if (pieces)
+      mo.complex_tracer = distributed_complex_tracer(
+          *comm,
+          [&](CellComplexPart& part) {
+            write_native_piece_file(output, comm->rank(), part);
+            return PartCounts{};
+          },
+          &distributed);
+    else
+      mo.tracer = distributed_tracer(*comm, &distributed);
   }
   std::optional<ProgressDisplay> progress;
   if (!o.json && !o.quiet && (!comm || comm->rank() == 0)) {
@@ -240,7 +283,13 @@ void run(TraceCliOptions o) {
     wo.native.offset.assign(t.offset().data(), t.offset().data() + d);
     wo.native.function_evaluations = r.function_evaluations;
     const auto t3 = Clock::now();
-    written = write_mesh(output, format, r.cells, wo);
+    if (vtu_pieces) {
+      write_pvtu_manifest_file(output, comm->size(), d, wo);
+      written = {pieces_written[0], pieces_written[1], pieces_written[2]};
+    } else {
+      written = mo.complex_tracer ? write_native_manifest_file(output, comm->size(), r.cells, wo.native)
+                                  : write_mesh(output, format, r.cells, wo);
+    }
     write_s = seconds_since(t3);
   };
   SampleOracleCounts counts;

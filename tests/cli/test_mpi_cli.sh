@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # End-to-end tests of `mpirun -n P coxmesh trace` ($COXMESH = the binary, $MPIEXEC = mpirun): for
 # P = 1, 2, 3 on this machine, the file and the JSON summary (timings, memory and the file's name
-# aside) are byte for byte those of one process with one thread, F evaluations included; a failure
+# aside) are byte for byte those of one process with one thread, F evaluations included (a .cxm
+# written in pieces, merged by `coxmesh convert`); a failure
 # of F on one rank stops every rank with one error line and a non-zero status.
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
@@ -13,7 +14,7 @@ mpi() {  # mpi P ARGS...: coxmesh ARGS on P processes, ended after 120 s (a hang
   local n=$1; shift
   timeout 120 "$mpiexec" --oversubscribe -n "$n" "$bin" "$@"
 }
-stable() { grep -v -E '"(path|[a-z_]*seconds|peak_memory_bytes)"' "$1"; }
+stable() { grep -v -E '"(path|[a-z_]*seconds|peak_memory_bytes|cell_complex_bytes)"' "$1"; }
 
 same_as_one_process() {  # same_as_one_process NAME TRACE-ARGS...
   local name=$1; shift
@@ -26,7 +27,14 @@ same_as_one_process() {  # same_as_one_process NAME TRACE-ARGS...
     [[ $n -eq 1 ]] && threads=(--threads 1)
     mpi "$n" trace "$@" "${threads[@]}" --json -o "$name.$n.cxm" > "$name.$n.json" 2> "$name.$n.err" || status=$?
     check "$name, $n processes: exit status" 0 "$status"
-    check "$name, $n processes: the same file" "same" "$(cmp -s "$name.cxm" "$name.$n.cxm" && echo same || echo different)"
+    # (several processes write a piece each and a manifest; convert merges them into one file)
+    local merged=$name.$n.cxm
+    if [[ $n -gt 1 ]]; then
+      check "$name, $n processes: one piece per process" "$n" "$(ls "$name.$n"_*.cxm | wc -l)"
+      merged=$name.$n.merged.cxm
+      "$bin" convert -q "$name.$n.cxm" "$merged"
+    fi
+    check "$name, $n processes: the same file" "same" "$(cmp -s "$name.cxm" "$merged" && echo same || echo different)"
     check "$name, $n processes: the same summary" "$(stable "$name.json")" "$(stable "$name.$n.json")"
   done
   # F once per lattice vertex in the whole job: the count is that of one process.
@@ -52,6 +60,58 @@ for n in 2 3; do
   check "NaN, $n processes: one error line" 1 "$(grep -c '^coxmesh: error: the function is not finite' nan.err)"
   check "NaN, $n processes: nothing on stdout, no file" "0 no" "$(wc -c < nan.out) $([ -e nan.cxm ] && echo yes || echo no)"
 done
+# Other formats: rank 0 writes the whole file, the one of one process.
+"$bin" trace --preset torus --threads 1 -q -o torus.vtu
+mpi 2 trace --preset torus -q -o torus.2.vtu
+check "vtu, 2 processes: the same file" same "$(cmp -s torus.vtu torus.2.vtu && echo same || echo different)"
+# .pvtu: a .vtu piece per process and the manifest. Read back (with python3's vtk, when installed),
+# the pieces hold each cell of one process's .vtu once (the same vertices, by their global ids).
+vtk_python=
+for p in python3 /usr/bin/python3; do
+  if "$p" -c "import vtk" 2> /dev/null; then vtk_python=$p; break; fi
+done
+same_cells_as_one_process() {  # NAME TRACE-ARGS...
+  local name=$1; shift
+  "$bin" trace "$@" --threads 1 -q -o "$name.vtu"
+  local status=0
+  mpi 3 trace "$@" -q -o "$name.pvtu" 2> "$name.pvtu.err" || status=$?
+  check "$name .pvtu, 3 processes: exit status and pieces" "0 3" "$status $(ls "$name"_*.vtu | wc -l)"
+  if [[ -n $vtk_python ]]; then
+    check "$name .pvtu: the cells of one process" same "$("$vtk_python" - "$name" << 'EOF'
+import sys, vtk
+from vtk.util.numpy_support import vtk_to_numpy
+def cells(grid, ids):
+    out = []
+    for c in range(grid.GetNumberOfCells()):
+        points = grid.GetCell(c).GetPointIds()
+        out.append(tuple(sorted(int(ids[points.GetId(i)]) for i in range(points.GetNumberOfIds()))))
+    return sorted(out)
+def read(reader, name):
+    reader.SetFileName(name)
+    reader.Update()
+    return reader.GetOutput()
+one = read(vtk.vtkXMLUnstructuredGridReader(), sys.argv[1] + ".vtu")
+pieces = read(vtk.vtkXMLPUnstructuredGridReader(), sys.argv[1] + ".pvtu")
+ids = vtk_to_numpy(pieces.GetPointData().GetArray("global_id"))
+xs, ys = vtk_to_numpy(pieces.GetPoints().GetData()), vtk_to_numpy(one.GetPoints().GetData())
+same = cells(one, range(one.GetNumberOfPoints())) == cells(pieces, ids) and (xs == ys[ids]).all()
+print("same" if same else "different")
+EOF
+)"
+  fi
+}
+same_cells_as_one_process curve-pieces --preset moment-curve
+same_cells_as_one_process surface-pieces --preset torus --box -2,-2,-0.1,2,2,2
+same_cells_as_one_process solid-pieces --preset sphere --m 3 --dim 4 --edge-length 0.3
+status=0
+"$bin" trace --preset torus -q -o one-process.pvtu 2> pvtu.err || status=$?
+check ".pvtu without mpirun: refused with one error line" "1 1" "$((status != 0)) $(grep -c '^coxmesh: error:' pvtu.err)"
+# A piece that cannot be written (rank 1's name is a directory): every rank stops, no manifest.
+mkdir fail_1.cxm
+status=0
+mpi 2 trace --preset torus -q -o fail.cxm > fail.out 2> fail.err || status=$?
+check "a piece not written: non-zero status, one error line, no manifest" "1 1 no" \
+  "$((status != 0)) $(grep -c '^coxmesh: error:' fail.err) $([ -e fail.cxm ] && echo yes || echo no)"
 # Bad input: every rank meets it at once; rank 0 says it.
 status=0
 mpi 2 trace --function "x^2+" --json > bad.out 2> bad.err || status=$?

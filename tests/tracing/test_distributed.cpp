@@ -4,11 +4,15 @@
 // so the sanitizer builds check the walk without MPI.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <barrier>
 #include <cmath>
 #include <cstring>
+#include <sstream>
 #include <thread>
 
+#include "coxmesh/cell_complex/cell_complex_distributed.h"
+#include "coxmesh/io/native_format.h"
 #include "coxmesh/oracle/implicit_oracle.h"
 #include "coxmesh/tracing/trace_distributed.h"
 #include "expect_identical.h"
@@ -114,7 +118,185 @@ TraceResult trace_on_ranks(int ranks, const Triangulation& t, const FunctionPtr&
   return root;
 }
 
+// Traces and builds the cell complex on `ranks` threads; returns every rank's part, the whole
+// complex gathered on rank 0 in `gathered`, and each rank's closure for writing in `closures`.
+std::vector<CellComplexPart> cell_parts_on_ranks(int ranks, const Triangulation& t, const FunctionPtr& f,
+                                                 const FunctionPtr& domain,
+                                                 const std::vector<std::vector<double>>& seeds,
+                                                 const TraceOptions& options, CellComplex* gathered,
+                                                 std::vector<CellClosure>* closures) {
+  Mailboxes mailboxes(ranks);
+  std::vector<CellComplexPart> parts(ranks);
+  if (closures) closures->assign(ranks, {});
+  std::vector<std::thread> threads;
+  for (int r = 0; r < ranks; ++r)
+    threads.emplace_back([&, r] {
+      ThreadCommunicator comm(mailboxes, r);
+      const auto values = ImplicitOracle::make_shared_values(t, f, domain);
+      ImplicitOracle oracle(t, f, domain, values);
+      const VertexEvaluator evaluate = [&](const std::int32_t* v, double* out) {
+        double x[kMaxDimension];
+        t.cartesian(v, x);
+        f->evaluate(x, out);
+        if (domain) domain->evaluate(x, out + f->codimension());
+      };
+      parts[r] = build_cell_complex_distributed(
+          trace_part_distributed(t, oracle, *values, evaluate, seeds, options, comm), comm);
+      if (closures) {
+        CellComplexPart copy = parts[r];
+        (*closures)[r] = closure_for_writing(copy, comm);
+      }
+      if (gathered) {
+        CellComplexPart copy = parts[r];
+        CellComplex whole = gather_cell_complex(std::move(copy), comm);
+        if (r == 0) *gathered = std::move(whole);
+      }
+    });
+  for (auto& thread : threads) thread.join();
+  return parts;
+}
+
+// The parts, each cell at its global id, are the levels of `one`: every cell once, same keys,
+// facets, boundary facets and vertex rows.
+void expect_parts_make(const CellComplex& one, const std::vector<CellComplexPart>& parts, const std::string& what) {
+  SCOPED_TRACE(what);
+  const int words = packed_words(one.ambient_dimension);
+  for (const bool interior : {true, false}) {
+    const std::vector<CellLevel>& levels = interior ? one.interior : one.boundary;
+    for (std::size_t j = 0; j < levels.size(); ++j) {
+      const CellLevel& level = levels[j];
+      std::vector<int> seen(level.size(), 0);
+      for (const CellComplexPart& part : parts) {
+        const CellLevel& mine = interior ? part.cells.interior.at(j) : part.cells.boundary.at(j);
+        const std::vector<std::uint32_t>& ids = interior ? part.interior_ids.at(j) : part.boundary_ids.at(j);
+        ASSERT_EQ((interior ? part.interior_sizes : part.boundary_sizes).at(j), level.size());
+        ASSERT_EQ(ids.size(), mine.size());
+        EXPECT_TRUE(std::is_sorted(ids.begin(), ids.end()));
+        for (std::uint32_t c = 0; c < mine.size(); ++c) {
+          const std::uint32_t g = ids[c];
+          ASSERT_LT(g, level.size());
+          ++seen[g];
+          ASSERT_TRUE(std::equal(mine.simplices.key(c), mine.simplices.key(c) + words, level.simplices.key(g)))
+              << (interior ? "interior " : "boundary ") << j << ", cell " << g;
+          const auto a = mine.facets(c), b = level.facets(g);
+          ASSERT_TRUE(std::equal(a.begin(), a.end(), b.begin(), b.end())) << j << ", cell " << g;
+          ASSERT_EQ(mine.boundary_facet.size() == 0, level.boundary_facet.size() == 0);
+          if (level.boundary_facet.size() > 0) {
+            ASSERT_EQ(mine.boundary_facet[c], level.boundary_facet[g]);
+          }
+          if (j == 0) {
+            const double* x = (interior ? part.cells.vertices : part.cells.boundary_vertices).data();
+            const double* y = (interior ? one.vertices : one.boundary_vertices).data();
+            const int d = one.ambient_dimension;
+            ASSERT_TRUE(std::equal(x + std::size_t{c} * d, x + std::size_t{c + 1} * d, y + std::size_t{g} * d));
+          }
+        }
+      }
+      EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), static_cast<std::ptrdiff_t>(level.size()))
+          << (interior ? "interior " : "boundary ") << j;
+    }
+  }
+}
+
+// Each closure is a complex of its own (every facet in it) whose cells are those of `one` at their
+// global ids, and whose levels shown in a file are the rank's own cells.
+void expect_closures_of(const CellComplex& one, const std::vector<CellComplexPart>& parts,
+                        const std::vector<CellClosure>& closures, const std::string& what) {
+  SCOPED_TRACE(what);
+  const int d = one.ambient_dimension, m = one.manifold_dimension, words = packed_words(d);
+  const int top[2] = {std::min(m, 3), std::min({m, 3, m - 1})};
+  for (std::size_t r = 0; r < parts.size(); ++r) {
+    const CellClosure& c = closures[r];
+    for (int kind = 0; kind < 2; ++kind)
+      for (int j = 0; j <= top[kind]; ++j) {
+        const CellLevel& level = kind ? c.cells.boundary[j] : c.cells.interior[j];
+        const CellLevel& whole = kind ? one.boundary[j] : one.interior[j];
+        const std::vector<std::uint32_t>& ids = kind ? c.boundary_ids[j] : c.interior_ids[j];
+        if (j == top[kind]) {
+          EXPECT_EQ(ids, kind ? parts[r].boundary_ids[j] : parts[r].interior_ids[j]);
+        }
+        ASSERT_EQ(ids.size(), level.size());
+        for (std::uint32_t i = 0; i < level.size(); ++i) {
+          const std::uint32_t g = ids[i];
+          ASSERT_TRUE(std::equal(level.simplices.key(i), level.simplices.key(i) + words, whole.simplices.key(g)));
+          std::vector<std::uint32_t> facets;
+          for (const std::uint32_t f : level.facets(i))
+            facets.push_back((kind ? c.boundary_ids : c.interior_ids)[j - 1][f]);
+          const auto expected = whole.facets(g);
+          ASSERT_TRUE(std::equal(facets.begin(), facets.end(), expected.begin(), expected.end())) << j << ", " << g;
+          if (whole.boundary_facet.size() > 0) {
+            const std::uint32_t b = level.boundary_facet[i];
+            ASSERT_EQ(b == CellLevel::kNone ? b : c.boundary_ids[j - 1][b], whole.boundary_facet[g]);
+          }
+          if (j == 0) {
+            const double* x = (kind ? c.cells.boundary_vertices : c.cells.vertices).data() + std::size_t{i} * d;
+            const double* y = (kind ? one.boundary_vertices : one.vertices).data() + std::size_t{g} * d;
+            ASSERT_TRUE(std::equal(x, x + d, y));
+          }
+        }
+      }
+  }
+}
+
 }  // namespace
+
+TEST(DistributedCellComplex, EveryLevelAsOneProcessNumbersIt) {
+  struct Case {
+    std::string name;
+    FunctionPtr f, domain;
+    Triangulation t;
+    std::vector<std::vector<double>> seeds;
+    std::size_t max_simplices = TraceOptions{}.max_simplices;
+  };
+  const std::vector<Case> cases = {
+      {"circle", sphere(1, 2, 1.0), nullptr, Triangulation::coxeter(2).with_longest_edge(0.02), {}},
+      {"S2 in R3", sphere(2, 3, 1.0), nullptr, Triangulation::coxeter(3).with_longest_edge(0.15), {}},
+      {"S3 in R4", sphere(3, 4, 1.0), nullptr, Triangulation::coxeter(4).with_longest_edge(0.5), {}},
+      {"flat torus cut",
+       product(sphere(1, 2, 1.0), sphere(1, 2, 1.0)),
+       half_space_domain({1, 1, 0, 0}, 0.5),
+       Triangulation::coxeter(4).with_longest_edge(0.3),
+       {{-1, 0, 1, 0}}},
+      {"two spheres",
+       sphere(2, 3, 1.0),
+       nullptr,
+       Triangulation::coxeter(3).with_longest_edge(0.2),
+       {{1, 0, 0}, {0, 0, 1}}},
+      {"limit", torus(1.0, 0.5), nullptr, Triangulation::coxeter(3).with_longest_edge(0.08), {}, 2000},
+  };
+  for (const Case& c : cases) {
+    const std::vector<std::vector<double>> seeds =
+        c.seeds.empty() ? std::vector<std::vector<double>>{c.f->seed()} : c.seeds;
+    ImplicitOracle oracle(c.t, c.f, c.domain);
+    TraceOptions options;
+    options.max_simplices = c.max_simplices;
+    TraceResult trace = trace_manifold(c.t, oracle, seeds, options);
+    EXPECT_GT(trace.simplices.size(), 300u) << c.name;
+    if (c.domain) {
+      EXPECT_GT(trace.boundary_simplices.size(), 0u) << c.name;
+    }
+    if (c.max_simplices < TraceOptions{}.max_simplices) {
+      EXPECT_EQ(trace.status, TraceStatus::max_simplices_reached);
+    }
+    const CellComplex one = build_cell_complex(std::move(trace));
+    std::ostringstream one_file;
+    write_native(one_file, one);
+    for (int ranks : {1, 2, 3, 4}) {
+      CellComplex gathered;
+      std::vector<CellClosure> closures;
+      std::vector<CellComplexPart> parts =
+          cell_parts_on_ranks(ranks, c.t, c.f, c.domain, seeds, options, &gathered, &closures);
+      expect_parts_make(one, parts, c.name + ", " + std::to_string(ranks) + " ranks");
+      expect_closures_of(one, parts, closures, c.name + ", " + std::to_string(ranks) + " ranks");
+      // Assembled or gathered, the parts are the complex of one process, to the byte of its file.
+      std::ostringstream assembled, on_rank_0;
+      write_native(assembled, assemble_cell_complex(std::move(parts)));
+      write_native(on_rank_0, gathered);
+      EXPECT_TRUE(assembled.str() == one_file.str()) << c.name << ", " << ranks << " ranks";
+      EXPECT_TRUE(on_rank_0.str() == one_file.str()) << c.name << ", " << ranks << " ranks, gathered";
+    }
+  }
+}
 
 TEST(DistributedTracing, IdenticalForEveryNumberOfRanks) {
   struct Case {

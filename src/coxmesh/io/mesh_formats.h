@@ -6,7 +6,9 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <ostream>
+#include <vector>
 
 #include "coxmesh/cell_complex/cell_complex.h"
 #include "coxmesh/io/projection.h"
@@ -27,6 +29,18 @@ struct WrittenCounts {
 /// are written as their fan triangles (VTK_TRIANGLE) and polyhedra as tetrahedra (VTK_TETRA), split
 /// as in simplices.h.
 WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices = false);
+
+/// The ids that the cells and vertices of a piece have in the whole complex (a piece of a .pvtu,
+/// written by one of several processes): per cell of each level, interior[j] and boundary[j] (its id
+/// in its level, as in the .cxm file), and per vertex in the numbering of polygons.h.
+struct VtuGlobalIds {
+  std::vector<std::vector<std::uint32_t>> interior, boundary;
+  std::vector<std::uint64_t> points;
+};
+/// write_vtu with point data and cell data "global_id" (UInt64): ids.points, and the id of the cell
+/// each VTK cell comes from (a triangle or tetrahedron of --simplices: its cell's).
+WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices,
+                        const VtuGlobalIds& ids);
 
 /// OFF: "OFF" with 3D (projected) points, or, with `n_dimensional`, "nOFF" with the R^d points;
 /// faces: every 2-cell (the polygonal 2-skeleton), consistently oriented when m = 2. Needs m ≥ 2

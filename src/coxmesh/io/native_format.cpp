@@ -7,6 +7,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "coxmesh/io/native_pieces.h"
 #include "coxmesh/lattice/faces.h"
 
 namespace coxmesh {
@@ -119,6 +120,8 @@ void write_native(std::ostream& os, const CellComplex& cc, const NativeInfo& inf
 NativeFile read_native(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("cannot open " + path);
+  NativeFile pieces;
+  if (read_native_manifest(in, path, pieces)) return pieces;  // (written by several processes)
   return read_native(in, path);
 }
 
@@ -133,6 +136,8 @@ NativeFile read_native(std::istream& in, const std::string& name) {
   if (!in) r.fail("not a .cxm file (no header line)");
   const std::streamoff data_start = in.tellg();
   nlohmann::json h = nlohmann::json::parse(line, nullptr, false);
+  if (h.is_object() && h.value("format", "") == "coxmesh-cxm-piece")
+    r.fail("a piece of a .cxm file written by several processes: read its manifest (NAME.cxm for NAME_<rank>.cxm)");
   if (h.is_discarded() || !h.is_object() || !h.contains("format") || h["format"] != kMagic)
     r.fail("not a .cxm file (bad header)");
   if (!h.contains("version") || (h["version"] != 1 && h["version"] != kVersion))

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "coxmesh/errors.h"
 #include "coxmesh/io/mesh_formats.h"
 #include "coxmesh/io/polygons.h"
 #include "coxmesh/io/simplices.h"
@@ -27,8 +28,18 @@ struct Grid {
   std::vector<std::uint8_t> types, dimension, is_boundary;
   std::vector<std::uint64_t> domains;  // bit i: the cell lies on D_{i+1} = 0 (a boundary cell of one domain: 1)
   bool has_polyhedra = false;
+  // With global ids (a piece of a larger mesh): the id of each cell added, `source` when it is added.
+  const VtuGlobalIds* ids = nullptr;
+  std::vector<std::uint64_t> global;
+  std::uint64_t source = 0;
+
+  // The cell c of level j of a kind is the next to be added.
+  void from(CellKind kind, int j, std::uint32_t c) {
+    if (ids) source = (kind == CellKind::boundary ? ids->boundary : ids->interior)[j][c];
+  }
 
   void add(std::uint8_t type, int dim, std::uint64_t on_domains, std::span<const std::uint32_t> points) {
+    if (ids) global.push_back(source);
     connectivity.insert(connectivity.end(), points.begin(), points.end());
     offsets.push_back(static_cast<Index>(connectivity.size()));
     types.push_back(type);
@@ -118,7 +129,8 @@ bool fits_int32(const CellComplex& cc, int p) {
 }
 
 template <class Index>
-WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices) {
+WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices,
+                           const VtuGlobalIds* ids) {
   const std::string index_type = sizeof(Index) == 4 ? "Int32" : "Int64";
   const int d = cc.ambient_dimension, m = cc.manifold_dimension;
   const std::vector<double> xs = vertex_coordinates(cc);
@@ -128,6 +140,7 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
   counts.points = nv;
 
   Grid<Index> g;
+  g.ids = ids;
   const int p = std::min(m, 3);
   g.reserve(cc, p, simplices);
   std::vector<std::uint32_t> scratch_points, scratch_cycle;
@@ -136,12 +149,14 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
     if (dim == 0) {
       for (std::uint32_t c = 0; c < cell_count(cc, kind, 0); ++c) {
         const std::uint32_t v = boundary ? n0 + c : c;
+        g.from(kind, 0, c);
         g.add(kVertex, 0, boundary, std::span(&v, 1));
       }
     } else if (dim == 1) {
       const Ragged ends = edge_ends(cc, kind);
       for (std::uint32_t c = 0; c < ends.size(); ++c)
         if (ends[c].size() == 2) {
+          g.from(kind, 1, c);
           g.add(kLine, 1, boundary, ends[c]);
         } else {
           ++counts.skipped;
@@ -188,6 +203,7 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
     if (p == 2) {
       for (std::uint32_t c = 0; c < polygons.size(); ++c)
         if (!polygons[c].empty()) {
+          c >= n2 ? g.from(CellKind::boundary, 2, c - n2) : g.from(CellKind::interior, 2, c);
           add_polygon(c >= n2 ? 1 : domains_of(2, c), polygons[c]);
         } else {
           ++counts.skipped;
@@ -198,7 +214,7 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
       for (CellKind kind : {CellKind::interior, CellKind::boundary}) {
         const Ragged faces = polyhedron_faces(cc, kind, polygons);
         for (std::uint32_t c = 0; c < faces.size(); ++c)
-          if (!faces[c].empty() && simplices) {
+          if (g.from(kind, 3, c); !faces[c].empty() && simplices) {
             for_each_cone_tetrahedron(faces[c], polygons, p3.data(),
                                       [&](std::uint32_t a, std::uint32_t b, std::uint32_t c2, std::uint32_t e) {
                                         const std::array<std::uint32_t, 4> t{a, b, c2, e};
@@ -213,6 +229,7 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
       }
       for (std::uint32_t c = n2; m == 3 && c < polygons.size(); ++c) {
         if (!polygons[c].empty()) {
+          g.from(CellKind::boundary, 2, c - n2);
           add_polygon(1, polygons[c]);
         } else {
           ++counts.skipped;
@@ -235,6 +252,11 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
   cell_data.push_back(block(R"(<DataArray type="UInt8" Name="dimension" format="appended")", g.dimension));
   cell_data.push_back(block(R"(<DataArray type="UInt8" Name="is_boundary" format="appended")", g.is_boundary));
   cell_data.push_back(block(R"(<DataArray type="UInt64" Name="domains" format="appended")", g.domains));
+  if (ids) {
+    if (ids->points.size() != nv) throw InputError("write_vtu: a global id is needed for every point");
+    point_data.push_back(block(R"(<DataArray type="UInt64" Name="global_id" format="appended")", ids->points));
+    cell_data.push_back(block(R"(<DataArray type="UInt64" Name="global_id" format="appended")", g.global));
+  }
   points.push_back(block(R"(<DataArray type="Float64" Name="Points" NumberOfComponents="3" format="appended")", p3));
   cells.push_back(
       block(R"(<DataArray type=")" + index_type + R"(" Name="connectivity" format="appended")", g.connectivity));
@@ -281,8 +303,16 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
 }  // namespace
 
 WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices) {
-  return fits_int32(cc, std::min(cc.manifold_dimension, 3)) ? write_vtu_as<std::int32_t>(os, cc, projection, simplices)
-                                                            : write_vtu_as<std::int64_t>(os, cc, projection, simplices);
+  return fits_int32(cc, std::min(cc.manifold_dimension, 3))
+             ? write_vtu_as<std::int32_t>(os, cc, projection, simplices, nullptr)
+             : write_vtu_as<std::int64_t>(os, cc, projection, simplices, nullptr);
+}
+
+WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices,
+                        const VtuGlobalIds& ids) {
+  return fits_int32(cc, std::min(cc.manifold_dimension, 3))
+             ? write_vtu_as<std::int32_t>(os, cc, projection, simplices, &ids)
+             : write_vtu_as<std::int64_t>(os, cc, projection, simplices, &ids);
 }
 
 }  // namespace coxmesh

@@ -2,6 +2,10 @@
 // (tracing/trace_distributed.h). Rank 0 builds the mesh from the whole result.
 #pragma once
 
+#include <array>
+#include <cstdint>
+
+#include "coxmesh/cell_complex/cell_complex_distributed.h"
 #include "coxmesh/mesh/mesh_manifold.h"
 #include "coxmesh/tracing/trace_distributed.h"
 #include "coxmesh/util/communicator.h"
@@ -20,5 +24,18 @@ struct DistributedPartDone {};
 ///   mo.tracer = distributed_tracer(comm);
 ///   try { MeshReport r = mesh_manifold(t, make, mo); /* rank 0 */ } catch (const DistributedPartDone&) {}
 Tracer distributed_tracer(Communicator& comm, DistributedTraceStats* stats = nullptr);
+
+/// Counts of what a rank wrote (e.g. points, cells and skipped cells of a file), summed over the ranks.
+using PartCounts = std::array<std::uint64_t, 3>;
+/// Writes one rank's part of the cell complex (e.g. its piece of the output file); may be collective.
+using PartWriter = std::function<PartCounts(CellComplexPart&)>;
+
+/// A MeshOptions::complex_tracer: the walk and the cell complex split over `comm`, each rank building
+/// the cells it owns (cell_complex_distributed.h) and writing them with `write_part` (every rank
+/// agrees on whether all succeeded before going on; `written`, if given, gets the counts summed over
+/// the ranks); then rank 0 gathers the whole complex for the topology and the report, and the other
+/// ranks throw DistributedPartDone.
+ComplexTracer distributed_complex_tracer(Communicator& comm, PartWriter write_part,
+                                         DistributedTraceStats* stats = nullptr, PartCounts* written = nullptr);
 
 }  // namespace coxmesh

@@ -131,7 +131,10 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
   const auto shared = trace.threads > 1 ? ImplicitOracle::make_shared_values(t, f, domain) : nullptr;
   bool first_worker = true;
   TraceResult traced;
-  if (o.tracer)
+  CellComplex built;  // (by complex_tracer)
+  if (o.complex_tracer)
+    built = o.complex_tracer(t, {f, domain}, seeds.seeds, trace, traced);
+  else if (o.tracer)
     traced = o.tracer(t, {f, domain}, seeds.seeds, trace);
   else
     traced = trace_manifold(
@@ -148,7 +151,7 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
   report.trace_seconds = seconds_since(t0);
   const double h = t.longest_edge();
   const ImplicitFunction* f_only[] = {f.get()};
-  if (traced.simplices.size() == 0) {
+  if (o.complex_tracer ? built.interior.empty() || built.interior[0].size() == 0 : traced.simplices.size() == 0) {
     std::vector<double> points;
     for (const auto& x : seeds.seeds) points.insert(points.end(), x.begin(), x.end());
     if (o.check_regularity && singular_on(f_only, points, h))
@@ -169,7 +172,7 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
 
   if (o.on_phase) o.on_phase("building the cell complex");
   const auto t1 = Clock::now();
-  report.cells = build_cell_complex(std::move(traced), trace.threads);
+  report.cells = o.complex_tracer ? std::move(built) : build_cell_complex(std::move(traced), trace.threads);
   report.cell_complex_seconds = seconds_since(t1);
   // The exact rule meshes a perturbed level set where F = 0 is not a regular level: say so.
   const CellComplex& cc = report.cells;

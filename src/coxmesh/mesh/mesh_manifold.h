@@ -34,6 +34,13 @@ using ManifoldMaker = std::function<ManifoldFunctions()>;
 using Tracer = std::function<TraceResult(const Triangulation&, const ManifoldFunctions&,
                                          const std::vector<std::vector<double>>& seeds, const TraceOptions&)>;
 
+/// The walk and the cell complex in place of trace_manifold and build_cell_complex, e.g. both split
+/// between processes (mesh_distributed.h): returns the complex, and the trace's status, message and
+/// counts in `traced` (whose S and S_∂ may stay empty).
+using ComplexTracer =
+    std::function<CellComplex(const Triangulation&, const ManifoldFunctions&,
+                              const std::vector<std::vector<double>>& seeds, const TraceOptions&, TraceResult& traced)>;
+
 struct MeshOptions {
   std::vector<std::vector<double>> seeds;  ///< points near M, d coordinates each
   bool project_seeds = true;               ///< move them onto M first (Gauss–Newton on F)
@@ -48,6 +55,7 @@ struct MeshOptions {
   TraceOptions trace;
   std::function<void(const std::string& phase)> on_phase;  ///< "building the cell complex", …
   Tracer tracer;                                           ///< replaces trace_manifold when set
+  ComplexTracer complex_tracer;                            ///< replaces trace_manifold and build_cell_complex when set
 };
 
 struct MeshReport;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <exception>
 #include <functional>
 #include <vector>
 
@@ -37,6 +38,12 @@ int owner_rank(const std::int32_t* v, int d, int ranks);
 /// 60 % of S on one of 2 ranks with blocks of 4^9 vertices, 51 % with 2^9).
 constexpr int owner_block_bits(int d) { return d >= 5 ? 1 : (6 + d / 2) / d; }
 
+/// Rethrows on every rank the failure of the first rank that failed (nullptr: none here), with its
+/// type (InputError, SeedError, EvaluationError, std::bad_alloc, else std::runtime_error) and
+/// message. Collective: every phase that may fail on one rank ends in it, so that no rank waits
+/// for a rank that gave up.
+void agree_on_failure(Communicator& comm, std::exception_ptr failure);
+
 /// trace_manifold(T, oracle, seeds, options) split between the ranks of `comm`; every rank calls it
 /// with the same arguments. Each rank walks the simplices it owns, level by level; the simplices it
 /// discovers for other ranks are sent to them once per level. `oracle` must read the vertex values
@@ -49,5 +56,29 @@ TraceResult trace_manifold_distributed(const Triangulation& triangulation, Inter
                                        SharedVertexValues& values, const VertexEvaluator& evaluate,
                                        const std::vector<std::vector<double>>& seeds, const TraceOptions& options,
                                        Communicator& comm, DistributedTraceStats* stats = nullptr);
+
+/// One rank's share of a distributed trace, kept where it was traced (nothing gathered): the
+/// simplices of S it owns, in their global order, and S_∂ as its walk met it (by the owner of τ,
+/// not yet deduplicated nor at the owners of the (k+1)-simplices). Status and counts are the job's.
+struct TracePart {
+  int ambient_dimension = 0, codimension = 0;
+  PackedKeyIndex simplices{1};                      ///< this rank's k-simplices of S, global ids increasing
+  PointArray points;                                ///< a row of d per simplex
+  std::vector<std::uint32_t> ids;                   ///< global id (place in S) of each
+  std::uint64_t size = 0;                           ///< |S| over all ranks
+  std::vector<std::uint64_t> boundary_discoveries;  ///< per meeting: (id of τ) << 32 | cofacet
+  std::vector<std::uint32_t> boundary_keys;         ///< the packed (k+1)-simplex met
+  PointArray boundary_points;                       ///< its point (d per meeting)
+  TraceStatus status = TraceStatus::complete;
+  std::string message;
+  std::uint64_t oracle_calls = 0, function_evaluations = 0;
+  int manifold_dimension() const { return ambient_dimension - codimension; }
+};
+
+/// trace_manifold_distributed without the final gather: every rank returns its share.
+TracePart trace_part_distributed(const Triangulation& triangulation, IntersectionOracle& oracle,
+                                 SharedVertexValues& values, const VertexEvaluator& evaluate,
+                                 const std::vector<std::vector<double>>& seeds, const TraceOptions& options,
+                                 Communicator& comm, DistributedTraceStats* stats = nullptr);
 
 }  // namespace coxmesh

@@ -13,21 +13,6 @@
 
 namespace coxmesh::walk {
 
-/// Appends n values to a message, and reads them back (raw bytes: every rank is the same program).
-template <class T>
-void put(std::vector<std::byte>& out, const T* x, std::size_t n) {
-  if (n == 0) return;  // (x may be the null data() of an empty vector, which memcpy must not get)
-  const std::size_t at = out.size();
-  out.resize(at + n * sizeof(T));
-  std::memcpy(out.data() + at, x, n * sizeof(T));
-}
-template <class T>
-void take(const std::byte*& in, T* x, std::size_t n) {
-  if (n == 0) return;
-  std::memcpy(x, in, n * sizeof(T));
-  in += n * sizeof(T);
-}
-
 // One rank's part of the walk. S is ordered as the sequential walk orders it: level by level, and
 // within a level by the discovery that found each simplex first, (id of τ) << 32 | (index of the
 // cofacet of τ), or by the order of the seed search's tests. Each rank keeps the simplices it owns
@@ -45,6 +30,8 @@ class DistributedWalk {
   void walk();
   bool stopped() const { return stopped_; }
   TraceResult finish(DistributedTraceStats* stats);
+  /// The share of this rank, nothing gathered (counts summed over the ranks). Collective.
+  TracePart finish_part(DistributedTraceStats* stats);
 
  private:
   // What a test of a k-simplex found that the caller must complete: a transverse simplex inside the
@@ -65,6 +52,8 @@ class DistributedWalk {
   void evaluate_here(const std::int32_t* v, double* out);
   // Rethrows, on every rank, the first failure of any rank (nullptr: none here). Collective.
   void agree(std::exception_ptr failure);
+  // The job's counts (oracle calls, F evaluations) into `r`, the cost into `stats`. Collective.
+  void sum_counts(std::uint64_t& oracle_calls, std::uint64_t& function_evaluations, DistributedTraceStats* stats);
 
   const Triangulation& t_;
   IntersectionOracle& oracle_;

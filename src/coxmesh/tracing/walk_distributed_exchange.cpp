@@ -27,9 +27,14 @@ enum class ErrorKind : std::uint8_t { other, input, seed, evaluation, memory };
 
 }  // namespace
 
-void DistributedWalk::agree(std::exception_ptr failure) {
+void DistributedWalk::agree(std::exception_ptr failure) { agree_on_failure(comm_, failure); }
+
+}  // namespace walk
+
+void agree_on_failure(Communicator& comm, std::exception_ptr failure) {
+  using walk::ErrorKind;
   std::uint64_t failed = failure ? 1 : 0;
-  comm_.sum(&failed, 1);
+  comm.sum(&failed, 1);
   if (failed == 0) return;
   std::vector<std::byte> mine;
   if (failure) {
@@ -53,7 +58,7 @@ void DistributedWalk::agree(std::exception_ptr failure) {
     put(mine, message.data(), message.size());
   }
   std::vector<std::size_t> counts;
-  const std::vector<std::byte> all = comm_.all_gather(mine, counts);
+  const std::vector<std::byte> all = comm.all_gather(mine, counts);
   // Every rank throws the failure of the first rank that failed.
   std::size_t at = 0;
   int r = 0;
@@ -73,6 +78,8 @@ void DistributedWalk::agree(std::exception_ptr failure) {
       throw std::runtime_error(message);
   }
 }
+
+namespace walk {
 
 // The values of F (and D) at a vertex this rank owns, evaluated now if no one has.
 void DistributedWalk::evaluate_here(const std::int32_t* v, double* out) {
@@ -225,22 +232,9 @@ void DistributedWalk::append_level() {
   next_keys_.clear(), next_arrivals_.clear(), next_data_.clear();
 }
 
-// S and S_∂ gathered on rank 0, each simplex at its global place; the counts summed.
-TraceResult DistributedWalk::finish(DistributedTraceStats* stats) {
-  std::vector<std::byte> simplices, boundary;
-  for (std::uint32_t i = 0; i < mine_.size(); ++i) {
-    put(simplices, &global_ids_[i], 1);
-    put(simplices, mine_.key(i), words_);
-    put(simplices, points_.data() + static_cast<std::size_t>(i) * d_, d_);
-  }
-  for (std::size_t i = 0; i < boundary_keys_.size(); ++i) {
-    put(boundary, &boundary_keys_[i], 1);
-    put(boundary, boundary_simplices_.data() + i * words_, words_);
-    put(boundary, boundary_points_.data() + i * d_, d_);
-  }
+void DistributedWalk::sum_counts(std::uint64_t& oracle_calls, std::uint64_t& function_evaluations,
+                                 DistributedTraceStats* stats) {
   std::vector<std::size_t> counts;
-  const std::vector<std::byte> all_simplices = comm_.gather_to_root(simplices, counts);
-  const std::vector<std::byte> all_boundary = comm_.gather_to_root(boundary, counts);
   std::uint64_t sums[] = {
       calls_, evaluations_ + oracle_.function_evaluations(), comm_.bytes_sent(), vertex_values_sent_, candidates_sent_,
       tests_};
@@ -257,6 +251,44 @@ TraceResult DistributedWalk::finish(DistributedTraceStats* stats) {
     largest = std::max(largest, x);
   }
   if (stats) *stats = {ranks_, levels_, sums[2], sums[3], sums[4], largest, sums[5]};
+  oracle_calls = sums[0], function_evaluations = sums[1];
+}
+
+// This rank's share as it stands: S's simplices owned here and the meetings with S_∂ walked here.
+TracePart DistributedWalk::finish_part(DistributedTraceStats* stats) {
+  TracePart part;
+  sum_counts(part.oracle_calls, part.function_evaluations, stats);
+  part.ambient_dimension = d_;
+  part.codimension = k_;
+  part.status = stopped_ ? TraceStatus::max_simplices_reached : TraceStatus::complete;
+  part.simplices = std::move(mine_);
+  part.points.assign(points_.begin(), points_.end());
+  part.ids = std::move(global_ids_);
+  part.size = global_size_;
+  part.boundary_discoveries = std::move(boundary_keys_);
+  part.boundary_keys = std::move(boundary_simplices_);
+  part.boundary_points.assign(boundary_points_.begin(), boundary_points_.end());
+  return part;
+}
+
+// S and S_∂ gathered on rank 0, each simplex at its global place; the counts summed.
+TraceResult DistributedWalk::finish(DistributedTraceStats* stats) {
+  std::vector<std::byte> simplices, boundary;
+  for (std::uint32_t i = 0; i < mine_.size(); ++i) {
+    put(simplices, &global_ids_[i], 1);
+    put(simplices, mine_.key(i), words_);
+    put(simplices, points_.data() + static_cast<std::size_t>(i) * d_, d_);
+  }
+  for (std::size_t i = 0; i < boundary_keys_.size(); ++i) {
+    put(boundary, &boundary_keys_[i], 1);
+    put(boundary, boundary_simplices_.data() + i * words_, words_);
+    put(boundary, boundary_points_.data() + i * d_, d_);
+  }
+  std::vector<std::size_t> counts;
+  const std::vector<std::byte> all_simplices = comm_.gather_to_root(simplices, counts);
+  const std::vector<std::byte> all_boundary = comm_.gather_to_root(boundary, counts);
+  std::uint64_t oracle_calls = 0, function_evaluations = 0;
+  sum_counts(oracle_calls, function_evaluations, stats);
 
   TraceResult result;
   result.ambient_dimension = d_;
@@ -265,8 +297,8 @@ TraceResult DistributedWalk::finish(DistributedTraceStats* stats) {
   result.boundary_simplices = PackedKeyIndex(words_);
   result.status = stopped_ ? TraceStatus::max_simplices_reached : TraceStatus::complete;
   if (rank_ != 0) return result;
-  result.oracle_calls = sums[0];
-  result.function_evaluations = sums[1];
+  result.oracle_calls = oracle_calls;
+  result.function_evaluations = function_evaluations;
   const std::size_t n = global_size_;
   std::vector<std::uint32_t> keys(n * words_);
   std::vector<double> points(n * d_);
@@ -304,10 +336,13 @@ TraceResult DistributedWalk::finish(DistributedTraceStats* stats) {
 
 }  // namespace walk
 
-TraceResult trace_manifold_distributed(const Triangulation& triangulation, IntersectionOracle& oracle,
-                                       SharedVertexValues& values, const VertexEvaluator& evaluate,
-                                       const std::vector<std::vector<double>>& seeds, const TraceOptions& options,
-                                       Communicator& comm, DistributedTraceStats* stats) {
+namespace {
+
+// The walk over every seed, with rank 0's seeds and limits; `finish` ends it (gathered or not).
+template <class Finish>
+auto walk_distributed(const Triangulation& triangulation, IntersectionOracle& oracle, SharedVertexValues& values,
+                      const VertexEvaluator& evaluate, const std::vector<std::vector<double>>& seeds,
+                      const TraceOptions& options, Communicator& comm, Finish&& finish) {
   if (oracle.ambient_dimension() != triangulation.dimension())
     throw InputError("the oracle works in R^" + std::to_string(oracle.ambient_dimension()) +
                      " but the triangulation is of R^" + std::to_string(triangulation.dimension()));
@@ -320,23 +355,23 @@ TraceResult trace_manifold_distributed(const Triangulation& triangulation, Inter
     std::vector<std::byte> bytes;
     const std::uint64_t header[] = {options.max_simplices, static_cast<std::uint64_t>(options.seed_search_rings),
                                     options.skip_unusable_seeds ? 1u : 0u, seeds.size()};
-    walk::put(bytes, header, 4);
+    put(bytes, header, 4);
     for (const auto& seed : seeds) {
       const std::uint64_t n = seed.size();
-      walk::put(bytes, &n, 1);
-      walk::put(bytes, seed.data(), seed.size());
+      put(bytes, &n, 1);
+      put(bytes, seed.data(), seed.size());
     }
     comm.broadcast(bytes);
     const std::byte* in = bytes.data();
     std::uint64_t h[4];
-    walk::take(in, h, 4);
+    take(in, h, 4);
     agreed.max_simplices = h[0], agreed.seed_search_rings = static_cast<int>(h[1]), agreed.skip_unusable_seeds = h[2];
     agreed_seeds.resize(h[3]);
     for (auto& seed : agreed_seeds) {
       std::uint64_t n;
-      walk::take(in, &n, 1);
+      take(in, &n, 1);
       seed.resize(n);
-      walk::take(in, seed.data(), n);
+      take(in, seed.data(), n);
     }
   }
   walk::DistributedWalk walk(triangulation, oracle, values, evaluate, agreed, comm);
@@ -345,11 +380,29 @@ TraceResult trace_manifold_distributed(const Triangulation& triangulation, Inter
     walk.add_seed(seed, !agreed.skip_unusable_seeds);
     walk.walk();
   }
-  TraceResult result = walk.finish(stats);
+  auto result = finish(walk);
   if (result.status == TraceStatus::max_simplices_reached)
     result.message = "stopped at the limit of " + std::to_string(agreed.max_simplices) +
                      " simplices; the manifold may be unbounded (give a domain or a box) or the scale too fine";
   return result;
+}
+
+}  // namespace
+
+TraceResult trace_manifold_distributed(const Triangulation& triangulation, IntersectionOracle& oracle,
+                                       SharedVertexValues& values, const VertexEvaluator& evaluate,
+                                       const std::vector<std::vector<double>>& seeds, const TraceOptions& options,
+                                       Communicator& comm, DistributedTraceStats* stats) {
+  return walk_distributed(triangulation, oracle, values, evaluate, seeds, options, comm,
+                          [&](walk::DistributedWalk& w) { return w.finish(stats); });
+}
+
+TracePart trace_part_distributed(const Triangulation& triangulation, IntersectionOracle& oracle,
+                                 SharedVertexValues& values, const VertexEvaluator& evaluate,
+                                 const std::vector<std::vector<double>>& seeds, const TraceOptions& options,
+                                 Communicator& comm, DistributedTraceStats* stats) {
+  return walk_distributed(triangulation, oracle, values, evaluate, seeds, options, comm,
+                          [&](walk::DistributedWalk& w) { return w.finish_part(stats); });
 }
 
 }  // namespace coxmesh

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace coxmesh {
@@ -35,5 +36,20 @@ class Communicator {
  protected:
   std::uint64_t bytes_sent_ = 0;
 };
+
+/// Appends n values to a message, and reads them back (raw bytes: every rank is the same program).
+template <class T>
+void put(std::vector<std::byte>& out, const T* x, std::size_t n) {
+  if (n == 0) return;  // (x may be the null data() of an empty vector, which memcpy must not get)
+  const std::size_t at = out.size();
+  out.resize(at + n * sizeof(T));
+  std::memcpy(out.data() + at, x, n * sizeof(T));
+}
+template <class T>
+void take(const std::byte*& in, T* x, std::size_t n) {
+  if (n == 0) return;
+  std::memcpy(x, in, n * sizeof(T));
+  in += n * sizeof(T);
+}
 
 }  // namespace coxmesh

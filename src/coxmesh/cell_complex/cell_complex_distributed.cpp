@@ -1,0 +1,665 @@
+// Thesis §4.2 over several processes: each level of the cell complex from this rank's part of the
+// level below, numbered as next_level_plain numbers it (cell_complex.cpp).
+#include "coxmesh/cell_complex/cell_complex_distributed.h"
+
+#include <algorithm>
+#include <numeric>
+#include <span>
+#include <stdexcept>
+
+#include "coxmesh/errors.h"
+#include "coxmesh/lattice/cofaces.h"
+#include "coxmesh/lattice/faces.h"
+
+namespace coxmesh {
+
+namespace {
+
+// Runs this rank's share of a step, then agrees with the others on whether every rank succeeded.
+template <class F>
+void agreed(Communicator& comm, F&& step) {
+  std::exception_ptr failure;
+  try {
+    step();
+  } catch (...) {
+    failure = std::current_exception();
+  }
+  agree_on_failure(comm, failure);
+}
+
+int owner_of(const std::uint32_t* key, int d, int ranks) {
+  return owner_rank(reinterpret_cast<const std::int32_t*>(key), d, ranks);  // (y, the minimal vertex, first)
+}
+
+// The global ids of new cells from their smallest discovery keys g << 32 | s (g < n, the global id
+// of a cell of the level below; keys distinct): a key's rank among every rank's keys. Without
+// gathering the keys anywhere: a key goes to the rank that holds g's range (the ranks split [0, n)
+// into contiguous ranges in rank order), which sorts what it receives and adds the keys of the
+// ranges before its own (a prefix sum of one count per rank); the ids come back in the order sent.
+std::uint64_t number_by_keys(const std::vector<std::uint64_t>& keys, std::uint64_t n, Communicator& comm,
+                             std::vector<std::uint32_t>& ids) {
+  const int ranks = comm.size();
+  const auto range_of = [&](std::uint64_t key) { return static_cast<int>((key >> 32) * ranks / n); };
+  std::vector<std::vector<std::byte>> out(ranks);
+  for (const std::uint64_t& key : keys) put(out[range_of(key)], &key, 1);
+  std::vector<std::size_t> counts;
+  const std::vector<std::byte> in = comm.exchange(out, counts);
+  const std::vector<std::size_t> from = counts;  // bytes of keys from each rank
+  out.assign(ranks, {});
+  std::vector<std::uint64_t> received, sorted;
+  agreed(comm, [&] {
+    received.resize(in.size() / sizeof(std::uint64_t));
+    const std::byte* at = in.data();
+    take(at, received.data(), received.size());
+    sorted = received;
+    std::sort(sorted.begin(), sorted.end());
+  });
+  std::vector<std::byte> mine;
+  const std::uint64_t here = sorted.size();
+  put(mine, &here, 1);
+  const std::vector<std::byte> totals_bytes = comm.all_gather(mine, counts);
+  std::vector<std::uint64_t> totals(ranks);
+  const std::byte* at = totals_bytes.data();
+  take(at, totals.data(), totals.size());
+  const std::uint64_t offset = std::accumulate(totals.begin(), totals.begin() + comm.rank(), std::uint64_t{0});
+  std::size_t next = 0;
+  for (int r = 0; r < ranks; ++r)
+    for (std::size_t i = 0; i < from[r] / sizeof(std::uint64_t); ++i) {
+      const auto place = std::lower_bound(sorted.begin(), sorted.end(), received[next++]) - sorted.begin();
+      const auto id = static_cast<std::uint32_t>(offset + static_cast<std::uint64_t>(place));
+      put(out[r], &id, 1);
+    }
+  const std::vector<std::byte> back = comm.exchange(out, counts);
+  std::vector<const std::byte*> reply(ranks);  // the next id from each range's rank
+  for (int r = 0; r < ranks; ++r) reply[r] = r == 0 ? back.data() : reply[r - 1] + counts[r - 1];
+  ids.resize(keys.size());
+  for (std::size_t i = 0; i < keys.size(); ++i) take(reply[range_of(keys[i])], &ids[i], 1);
+  return std::accumulate(totals.begin(), totals.end(), std::uint64_t{0});
+}
+
+// The cells of a level that reach their owner (this rank), each with a discovery key (packed key,
+// discovery key, `extra` doubles): per cell its smallest key and that key's extra values, and, with
+// `facets`, every cell it was found from. Records for this rank are added as they are made; the
+// others arrive in one exchange.
+struct Arrivals {
+  Arrivals(int words, int extra, bool facets) : found(words), extra(extra), facets(facets) {}
+
+  void add(const std::uint32_t* key, std::uint64_t discovery, const double* x) {
+    const auto [id, fresh] = found.insert(key);
+    if (fresh) {
+      first.push_back(discovery);
+      values.insert(values.end(), x, x + extra);
+    } else if (discovery < first[id]) {
+      first[id] = discovery;
+      std::copy(x, x + extra, values.begin() + static_cast<std::ptrdiff_t>(id) * extra);
+    }
+    if (facets) incidences.push_back(std::uint64_t{id} << 32 | discovery >> 32);
+  }
+  // A record for `owner`: added here, or appended to its message.
+  void send(std::vector<std::vector<std::byte>>& out, int owner, int rank, const std::uint32_t* key,
+            std::uint64_t discovery, const double* x) {
+    if (owner == rank) return add(key, discovery, x);
+    put(out[owner], key, found.words());
+    put(out[owner], &discovery, 1);
+    put(out[owner], x, extra);
+  }
+
+  PackedKeyIndex found;
+  int extra;
+  bool facets;
+  std::vector<std::uint64_t> first, incidences;  // incidences: (cell here) << 32 | facet
+  std::vector<double> values;
+};
+
+CellLevel ordered_level(Arrivals& a, const std::vector<std::uint32_t>& global, std::vector<std::uint32_t>& ids,
+                        std::vector<double>* data);
+
+// The level that `arrivals` and the messages `out` make, settled on each owner: numbered by the
+// cells' smallest discovery keys (prev_size: the size of the level the keys' ids are from), in
+// global order here, with their facets and the extra values of the smallest key in `data`.
+CellLevel settle(Arrivals& arrivals, std::vector<std::vector<std::byte>>& out, std::uint64_t prev_size,
+                 Communicator& comm, std::vector<std::uint32_t>& ids, std::uint64_t& size, std::vector<double>* data) {
+  std::vector<std::size_t> counts;
+  std::vector<std::byte> in = comm.exchange(out, counts);
+  out.clear();
+  const int words = arrivals.found.words(), extra = arrivals.extra;
+  std::uint32_t key[packed_words(kMaxDimension)] = {};
+  double x[kMaxDimension] = {};
+  const std::size_t record = sizeof(std::uint32_t) * words + sizeof(std::uint64_t) + sizeof(double) * extra;
+  agreed(comm, [&] {
+    for (const std::byte* at = in.data(); at + record <= in.data() + in.size();) {
+      std::uint64_t discovery;
+      take(at, key, words);
+      take(at, &discovery, 1);
+      take(at, x, extra);
+      arrivals.add(key, discovery, x);
+    }
+  });
+  in = {};
+  std::vector<std::uint32_t> global;
+  size = number_by_keys(arrivals.first, prev_size, comm, global);
+  CellLevel level;
+  agreed(comm, [&] { level = ordered_level(arrivals, global, ids, data); });
+  return level;
+}
+
+// The cells that arrived here in global order (by their smallest keys), with their facets.
+CellLevel ordered_level(Arrivals& a, const std::vector<std::uint32_t>& global, std::vector<std::uint32_t>& ids,
+                        std::vector<double>* data) {
+  a.found.release_index();  // (the keys are all it needs now)
+  const PackedKeyIndex& found = a.found;
+  const std::vector<std::uint64_t>& first = a.first;
+  std::vector<std::uint64_t>& incidences = a.incidences;
+  const std::vector<double>& values = a.values;
+  const int words = found.words(), extra = a.extra;
+  const std::uint32_t n = found.size();
+  std::vector<std::uint32_t> order(n), place(n);
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return first[a] < first[b]; });
+  CellLevel level;
+  level.simplices = PackedKeyIndex(words);
+  level.simplices.reserve(n);
+  ids.resize(n);
+  if (data) data->clear();
+  for (std::uint32_t i = 0; i < n; ++i) {
+    level.simplices.insert(found.key(order[i]));
+    ids[i] = global[order[i]];
+    place[order[i]] = i;
+    if (data)
+      data->insert(data->end(), values.begin() + std::ptrdiff_t{order[i]} * extra,
+                   values.begin() + std::ptrdiff_t{order[i] + 1} * extra);
+  }
+  // Facet lists in global ids, increasing (as the single process finds them).
+  for (std::uint64_t& e : incidences) e = std::uint64_t{place[e >> 32]} << 32 | (e & 0xFFFFFFFFu);
+  std::sort(incidences.begin(), incidences.end());
+  level.facet_offsets.assign(n + 1, 0);
+  level.facet_ids.resize(incidences.size());
+  for (std::size_t i = 0; i < incidences.size(); ++i) {
+    ++level.facet_offsets[(incidences[i] >> 32) + 1];
+    level.facet_ids[i] = static_cast<std::uint32_t>(incidences[i]);
+  }
+  for (std::uint32_t c = 0; c < n; ++c) level.facet_offsets[c + 1] += level.facet_offsets[c];
+  return level;
+}
+
+// Level j from this rank's part of level j − 1 (next_level_plain): the l-cofaces of each cell's
+// simplex go to their owners with the cell's global id and their place among its cofaces.
+CellLevel next_level(const CellLevel& prev, const std::vector<std::uint32_t>& prev_ids, std::uint64_t prev_size, int d,
+                     int l, Communicator& comm, std::vector<std::uint32_t>& ids, std::uint64_t& size) {
+  const int words = packed_words(d), ranks = comm.size();
+  std::vector<std::vector<std::byte>> out(ranks);
+  Arrivals arrivals(words, 0, true);
+  const double no_values = 0;  // (no extra values at this level)
+  CofaceEnumerator cofaces;
+  std::uint32_t key[packed_words(kMaxDimension)];
+  agreed(comm, [&] {
+    for (std::uint32_t c = 0; c < prev.size(); ++c) {
+      std::uint64_t discovery = std::uint64_t{prev_ids[c]} << 32;
+      cofaces.reset(prev.simplices.simplex(c, d), l);
+      while (const Simplex* nu = cofaces.next()) {
+        pack(*nu, key);
+        arrivals.send(out, owner_of(key, d, ranks), comm.rank(), key, discovery++, &no_values);
+      }
+    }
+  });
+  return settle(arrivals, out, prev_size, comm, ids, size, nullptr);
+}
+
+}  // namespace
+
+CellComplexPart build_cell_complex_distributed(TracePart&& trace, Communicator& comm) {
+  CellComplexPart part;
+  CellComplex& cc = part.cells;
+  const int d = trace.ambient_dimension, k = trace.codimension, m = d - k, words = packed_words(d);
+  cc.ambient_dimension = d;
+  cc.manifold_dimension = m;
+  cc.interior.resize(1);
+  cc.interior[0].simplices = std::move(trace.simplices);
+  cc.interior[0].facet_offsets.assign(cc.interior[0].size() + 1, 0);
+  cc.vertices = std::move(trace.points);
+  part.interior_ids = {std::move(trace.ids)};
+  part.interior_sizes = {trace.size};
+  bool has_boundary = false;
+  if (m >= 1) {
+    // S_∂ at the owners of its (k+1)-simplices: the first meeting (smallest key) numbers it and
+    // gives its point, as in the gathered trace (walk_distributed_exchange.cpp).
+    std::vector<std::vector<std::byte>> out(comm.size());
+    Arrivals arrivals(words, d, false);
+    for (std::size_t i = 0; i < trace.boundary_discoveries.size(); ++i) {
+      const std::uint32_t* key = trace.boundary_keys.data() + i * words;
+      arrivals.send(out, owner_of(key, d, comm.size()), comm.rank(), key, trace.boundary_discoveries[i],
+                    trace.boundary_points.data() + i * d);
+    }
+    std::vector<std::uint32_t> ids;
+    std::uint64_t size = 0;
+    std::vector<double> points;
+    cc.boundary.push_back(settle(arrivals, out, trace.size, comm, ids, size, &points));
+    cc.boundary_vertices.assign(points.begin(), points.end());
+    part.boundary_ids.push_back(std::move(ids));
+    part.boundary_sizes.push_back(size);
+    has_boundary = size > 0;
+  }
+  // Hash tables only while a look-up needs them (a boundary level, for the boundary facets of the
+  // interior level above it): they are a quarter to a third of a level's memory.
+  cc.interior[0].simplices.release_index();
+  for (int j = 1; j <= m; ++j) {
+    std::vector<std::uint32_t> ids;
+    std::uint64_t size = 0;
+    cc.interior.push_back(next_level(cc.interior[j - 1], part.interior_ids[j - 1], part.interior_sizes[j - 1], d, k + j,
+                                     comm, ids, size));
+    part.interior_ids.push_back(std::move(ids));
+    part.interior_sizes.push_back(size);
+    CellLevel& level = cc.interior[j];
+    level.simplices.release_index();
+    if (has_boundary) {  // (a cut cell's boundary cell lies on the same simplex, hence here)
+      level.boundary_facet.resize(level.size());
+      for (std::uint32_t c = 0; c < level.size(); ++c) {
+        const std::uint32_t b = cc.boundary[j - 1].simplices.find(level.simplices.key(c));
+        level.boundary_facet[c] = b == PackedKeyIndex::kAbsent ? CellLevel::kNone : part.boundary_ids[j - 1][b];
+      }
+    }
+    if (has_boundary && j <= m - 1) {
+      cc.boundary.push_back(next_level(cc.boundary[j - 1], part.boundary_ids[j - 1], part.boundary_sizes[j - 1], d,
+                                       k + 1 + j, comm, ids, size));
+      part.boundary_ids.push_back(std::move(ids));
+      part.boundary_sizes.push_back(size);
+    }
+    if (j - 1 < static_cast<int>(cc.boundary.size())) cc.boundary[j - 1].simplices.release_index();
+  }
+  if (!has_boundary) {  // empty levels, uniform shape
+    cc.boundary.resize(std::max(m, 0));
+    part.boundary_ids.resize(cc.boundary.size());
+    part.boundary_sizes.resize(cc.boundary.size());
+  }
+  for (auto& l : cc.boundary)
+    if (l.simplices.words() != words) l.simplices = PackedKeyIndex(words);
+  for (auto* levels : {&cc.interior, &cc.boundary})
+    for (CellLevel& l : *levels) l.simplices.release_index();
+  return part;
+}
+
+namespace {
+
+// One part's cells of one level, wherever they are (a CellComplexPart, or a message).
+struct LevelView {
+  std::uint32_t n = 0;
+  std::uint64_t facet_entries = 0;
+  const std::uint32_t *keys = nullptr, *offsets = nullptr, *facets = nullptr, *boundary_facet = nullptr, *ids = nullptr;
+  const double* rows = nullptr;  // vertex coordinates (level 0)
+};
+
+LevelView view_of(const CellLevel& l, const std::vector<std::uint32_t>& ids, const PointArray* rows) {
+  if (ids.size() != l.size()) throw InputError("a part of the cell complex has cells without ids");
+  return {l.size(),
+          l.facet_ids.size(),
+          l.size() ? l.simplices.key(0) : nullptr,
+          l.facet_offsets.data(),
+          l.facet_ids.data(),
+          l.boundary_facet.empty() ? nullptr : l.boundary_facet.data(),
+          ids.data(),
+          rows ? rows->data() : nullptr};
+}
+
+// The level of n cells from the views of every part, each cell at its global id; with `rows`
+// (level 0) the vertex coordinates too. Throws InputError unless every cell is in one part.
+CellLevel assemble_level(const std::vector<LevelView>& views, std::uint64_t n, int d, PointArray* rows) {
+  if (n >= PackedKeyIndex::kAbsent) throw InputError("too many cells in a level");
+  std::vector<std::uint64_t> where(n, ~std::uint64_t{0});  // per global id: part << 32 | index there
+  std::uint64_t entries = 0;
+  bool boundary_facets = false;
+  for (std::size_t p = 0; p < views.size(); ++p) {
+    const LevelView& v = views[p];
+    for (std::uint32_t c = 0; c < v.n; ++c) {
+      if (v.ids[c] >= n || where[v.ids[c]] != ~std::uint64_t{0})
+        throw InputError("the parts of the cell complex do not number its cells once each");
+      where[v.ids[c]] = std::uint64_t{p} << 32 | c;
+    }
+    entries += v.facet_entries;
+    boundary_facets |= v.boundary_facet != nullptr;
+  }
+  const int words = packed_words(d);
+  CellLevel level;
+  level.simplices = PackedKeyIndex(words);
+  level.simplices.reserve(n);
+  level.facet_offsets.assign(n + 1, 0);
+  level.facet_ids.reserve(entries);
+  if (boundary_facets) level.boundary_facet.resize(n);
+  if (rows) rows->reserve(n * d);
+  for (std::uint64_t g = 0; g < n; ++g) {
+    if (where[g] == ~std::uint64_t{0}) throw InputError("a cell of the complex is in no part");
+    const LevelView& v = views[where[g] >> 32];
+    const auto c = static_cast<std::uint32_t>(where[g]);
+    if (!level.simplices.insert(v.keys + std::size_t{c} * words).second)
+      throw InputError("a simplex appears twice in a level of the cell complex");
+    if (v.offsets[c] > v.offsets[c + 1] || v.offsets[c + 1] > v.facet_entries)
+      throw InputError("a part of the cell complex has bad facet offsets");
+    level.facet_ids.insert(level.facet_ids.end(), v.facets + v.offsets[c], v.facets + v.offsets[c + 1]);
+    if (level.facet_ids.size() >= (std::uint64_t{1} << 32)) throw InputError("too many facets in a level");
+    level.facet_offsets[g + 1] = static_cast<std::uint32_t>(level.facet_ids.size());
+    if (boundary_facets) level.boundary_facet[g] = v.boundary_facet ? v.boundary_facet[c] : CellLevel::kNone;
+    if (rows) rows->insert(rows->end(), v.rows + std::size_t{c} * d, v.rows + (std::size_t{c} + 1) * d);
+  }
+  level.simplices.release_index();
+  return level;
+}
+
+// One part's level as a message, and the view of such a message.
+void put_level(std::vector<std::byte>& out, const CellLevel& l, const std::vector<std::uint32_t>& ids,
+               const PointArray* rows) {
+  const std::size_t start = out.size();
+  const std::uint64_t shape[] = {l.size(), l.facet_ids.size(), l.boundary_facet.size(), rows ? rows->size() : 0};
+  put(out, shape, 4);
+  if (l.size()) put(out, l.simplices.key(0), std::size_t{l.size()} * l.simplices.words());
+  put(out, l.facet_offsets.data(), l.facet_offsets.size());
+  put(out, l.facet_ids.data(), l.facet_ids.size());
+  put(out, l.boundary_facet.data(), l.boundary_facet.size());
+  put(out, ids.data(), ids.size());
+  out.resize(out.size() + (out.size() - start) % 8);  // (the rows aligned: see view_message)
+  if (rows) put(out, rows->data(), rows->size());
+}
+
+LevelView view_message(const std::byte* in, int words) {
+  // (every array of a message starts at a multiple of 4 bytes from its start, the rows at 8; the
+  // gathered bytes of a rank start at a multiple of 8, as every message is padded to one)
+  const std::byte* const start = in;
+  std::uint64_t shape[4];
+  take(in, shape, 4);
+  const auto at = [&](std::size_t count) {
+    const auto* p = reinterpret_cast<const std::uint32_t*>(in);
+    in += count * sizeof(std::uint32_t);
+    return p;
+  };
+  LevelView v;
+  v.n = static_cast<std::uint32_t>(shape[0]);
+  v.facet_entries = shape[1];
+  v.keys = at(shape[0] * words);
+  v.offsets = at(shape[0] + 1);
+  v.facets = at(shape[1]);
+  v.boundary_facet = shape[2] ? at(shape[2]) : nullptr;
+  v.ids = at(shape[0]);
+  in += (in - start) % 8;
+  v.rows = shape[3] ? reinterpret_cast<const double*>(in) : nullptr;
+  return v;
+}
+
+}  // namespace
+
+CellComplex assemble_cell_complex(std::vector<CellComplexPart>&& parts) {
+  if (parts.empty()) throw InputError("no part of a cell complex to assemble");
+  CellComplex cc;
+  const CellComplexPart& first = parts[0];
+  const int d = first.cells.ambient_dimension;
+  cc.ambient_dimension = d;
+  cc.manifold_dimension = first.cells.manifold_dimension;
+  for (const CellComplexPart& p : parts)
+    if (p.cells.ambient_dimension != d || p.cells.manifold_dimension != cc.manifold_dimension ||
+        p.interior_sizes != first.interior_sizes || p.boundary_sizes != first.boundary_sizes ||
+        p.cells.interior.size() != first.interior_sizes.size() ||
+        p.cells.boundary.size() != first.boundary_sizes.size())
+      throw InputError("the parts of the cell complex do not agree on its shape");
+  for (int kind = 0; kind < 2; ++kind) {
+    const std::vector<std::uint64_t> sizes = kind ? first.boundary_sizes : first.interior_sizes;
+    for (std::size_t j = 0; j < sizes.size(); ++j) {
+      std::vector<LevelView> views;
+      for (const CellComplexPart& p : parts) {
+        const PointArray* rows = j > 0 ? nullptr : kind ? &p.cells.boundary_vertices : &p.cells.vertices;
+        views.push_back(view_of(kind ? p.cells.boundary[j] : p.cells.interior[j],
+                                kind ? p.boundary_ids[j] : p.interior_ids[j], rows));
+      }
+      PointArray* rows = j > 0 ? nullptr : kind ? &cc.boundary_vertices : &cc.vertices;
+      (kind ? cc.boundary : cc.interior).push_back(assemble_level(views, sizes[j], d, rows));
+      for (CellComplexPart& p : parts) (kind ? p.cells.boundary : p.cells.interior)[j] = CellLevel{};  // (memory)
+    }
+  }
+  parts.clear();
+  return cc;
+}
+
+// Level by level, so that rank 0 holds the complex and one level's messages at most.
+CellComplex gather_cell_complex(CellComplexPart&& part, Communicator& comm) {
+  CellComplex cc;
+  const int d = part.cells.ambient_dimension, words = packed_words(d);
+  cc.ambient_dimension = d;
+  cc.manifold_dimension = part.cells.manifold_dimension;
+  for (int kind = 0; kind < 2; ++kind) {
+    const std::vector<std::uint64_t> sizes = kind ? part.boundary_sizes : part.interior_sizes;
+    for (std::size_t j = 0; j < sizes.size(); ++j) {
+      CellLevel& mine = kind ? part.cells.boundary[j] : part.cells.interior[j];
+      PointArray* my_rows = j > 0 ? nullptr : kind ? &part.cells.boundary_vertices : &part.cells.vertices;
+      std::vector<std::byte> message;
+      put_level(message, mine, kind ? part.boundary_ids[j] : part.interior_ids[j], my_rows);
+      message.resize((message.size() + 7) / 8 * 8);  // (the next rank's doubles stay aligned)
+      mine = CellLevel{};
+      if (my_rows) *my_rows = PointArray{};
+      std::vector<std::size_t> counts;
+      const std::vector<std::byte> all = comm.gather_to_root(message, counts);
+      message = {};
+      agreed(comm, [&] {  // (the others wait for rank 0 before the next level: it may fail)
+        if (comm.rank() != 0) return;
+        std::vector<LevelView> views;
+        const std::byte* at = all.data();
+        for (const std::size_t count : counts) views.push_back(view_message(at, words)), at += count;
+        PointArray* rows = j > 0 ? nullptr : kind ? &cc.boundary_vertices : &cc.vertices;
+        (kind ? cc.boundary : cc.interior).push_back(assemble_level(views, sizes[j], d, rows));
+      });
+    }
+  }
+  part = CellComplexPart{};
+  return comm.rank() == 0 ? std::move(cc) : CellComplex{};
+}
+
+namespace {
+
+// The cells of one level of a closure that other ranks own, in the order they arrive.
+struct Halo {
+  explicit Halo(int words) : keys(words) {}
+  PackedKeyIndex keys;
+  std::vector<std::uint32_t> ids, facet_offsets{0}, facets, boundary_facet;
+  std::vector<double> rows;
+};
+
+}  // namespace
+
+CellClosure closure_for_writing(CellComplexPart& part, Communicator& comm) {
+  CellComplex& cc = part.cells;
+  const int d = cc.ambient_dimension, m = cc.manifold_dimension, words = packed_words(d);
+  const int ranks = comm.size();
+  const int top[2] = {std::min(m, 3), m >= 1 ? std::min({m, 3, m - 1}) : -1};  // interior, boundary
+  const bool has_boundary = !part.boundary_sizes.empty() && part.boundary_sizes[0] > 0;
+  const auto level_of = [&](int kind, int j) -> CellLevel& { return kind ? cc.boundary[j] : cc.interior[j]; };
+  const auto ids_of = [&](int kind, int j) -> std::vector<std::uint32_t>& {
+    return kind ? part.boundary_ids[j] : part.interior_ids[j];
+  };
+  // Per level: which of this rank's cells are in the closure, and the cells of other ranks in it.
+  std::vector<std::vector<std::uint8_t>> mine[2];
+  std::vector<Halo> halo[2];
+  for (int kind = 0; kind < 2; ++kind)
+    for (int j = 0; j <= top[kind]; ++j) {
+      mine[kind].emplace_back(level_of(kind, j).size(), j == top[kind] ? 1 : 0);
+      halo[kind].emplace_back(words);
+    }
+  // The cell of global id g of level j of this rank, or kAbsent.
+  const auto own = [&](int kind, int j, std::uint32_t g) {
+    const std::vector<std::uint32_t>& ids = ids_of(kind, j);
+    const auto at = std::lower_bound(ids.begin(), ids.end(), g);
+    return at != ids.end() && *at == g ? static_cast<std::uint32_t>(at - ids.begin()) : PackedKeyIndex::kAbsent;
+  };
+  // Level by level downwards: the facets of the closure's cells join it; those of other ranks are
+  // asked from the owners of the faces of their cells' simplices (most cells have none).
+  for (int j = std::max(top[0], top[1]); j >= 1; --j) {
+    std::vector<std::vector<std::byte>> requests(ranks);
+    PackedKeyIndex asked[2] = {PackedKeyIndex(words), PackedKeyIndex(words)};
+    agreed(comm, [&] {
+      std::uint32_t key[packed_words(kMaxDimension)];
+      FaceEnumerator faces;
+      const auto ask_faces = [&](int kind, const std::uint32_t* cell_key) {
+        const Simplex s = unpack(cell_key, d);
+        faces.reset(s, s.dimension() - 1);
+        for (Simplex f; faces.next(f);) {
+          pack(f, key);
+          const int owner = owner_of(key, d, ranks);
+          if (owner == comm.rank() || !asked[kind].insert(key).second) continue;
+          const std::uint32_t k = static_cast<std::uint32_t>(kind);
+          put(requests[owner], &k, 1);
+          put(requests[owner], key, words);
+        }
+      };
+      // (a cell's facets of its kind, and its boundary facet, which lies on its simplex)
+      const auto take_facets = [&](int kind, std::span<const std::uint32_t> facets, std::uint32_t bf,
+                                   const std::uint32_t* key, bool here) {
+        bool remote = false;
+        for (const std::uint32_t g : facets) {
+          const std::uint32_t c = own(kind, j - 1, g);
+          if (c == PackedKeyIndex::kAbsent)
+            remote = true;
+          else
+            mine[kind][j - 1][c] = 1;
+        }
+        if (remote) ask_faces(kind, key);
+        if (kind == 1 || bf == CellLevel::kNone) return;
+        if (here) {
+          mine[1][j - 1][own(1, j - 1, bf)] = 1;
+        } else if (asked[1].insert(key).second) {
+          const std::uint32_t k = 1;
+          put(requests[owner_of(key, d, ranks)], &k, 1);
+          put(requests[owner_of(key, d, ranks)], key, words);
+        }
+      };
+      for (int kind = 0; kind < 2; ++kind) {
+        if (j > top[kind]) continue;
+        const CellLevel& level = level_of(kind, j);
+        for (std::uint32_t c = 0; c < level.size(); ++c)
+          if (mine[kind][j][c])
+            take_facets(kind, level.facets(c),
+                        level.boundary_facet.empty() ? CellLevel::kNone : level.boundary_facet[c],
+                        level.simplices.key(c), true);
+        const Halo& h = halo[kind][j];
+        for (std::uint32_t i = 0; i < h.ids.size(); ++i)
+          take_facets(kind, {h.facets.data() + h.facet_offsets[i], h.facets.data() + h.facet_offsets[i + 1]},
+                      h.boundary_facet[i], h.keys.key(i), false);
+      }
+    });
+    // The owners look the asked simplices up (a hash table for this round only).
+    for (int kind = 0; kind < 2; ++kind)
+      if (j - 1 <= top[kind]) level_of(kind, j - 1).simplices.reindex();
+    std::vector<std::size_t> counts;
+    const std::vector<std::byte> asked_here = comm.exchange(requests, counts);
+    std::vector<std::vector<std::byte>> replies(ranks);
+    agreed(comm, [&] {
+      const std::byte* in = asked_here.data();
+      std::uint32_t key[packed_words(kMaxDimension)];
+      for (int r = 0; r < ranks; ++r)
+        for (std::size_t n = counts[r] / (sizeof(std::uint32_t) * (words + 1)); n > 0; --n) {
+          std::uint32_t kind;
+          take(in, &kind, 1);
+          take(in, key, words);
+          const CellLevel& l = level_of(static_cast<int>(kind), j - 1);
+          const std::uint32_t c = l.simplices.find(key);
+          const std::uint32_t found = c != PackedKeyIndex::kAbsent;
+          put(replies[r], &found, 1);
+          if (!found) continue;
+          const auto f = l.facets(c);
+          const std::uint32_t head[] = {ids_of(static_cast<int>(kind), j - 1)[c], static_cast<std::uint32_t>(f.size()),
+                                        l.boundary_facet.empty() ? CellLevel::kNone : l.boundary_facet[c]};
+          put(replies[r], head, 3);
+          put(replies[r], f.data(), f.size());
+          if (j - 1 == 0) put(replies[r], (kind ? cc.boundary_vertices : cc.vertices).data() + std::size_t{c} * d, d);
+        }
+    });
+    for (int kind = 0; kind < 2; ++kind)
+      if (j - 1 <= top[kind]) level_of(kind, j - 1).simplices.release_index();
+    const std::vector<std::byte> answers = comm.exchange(replies, counts);
+    agreed(comm, [&] {
+      const std::byte* in = answers.data();
+      for (int r = 0; r < ranks; ++r) {
+        const std::byte* q = requests[r].data();
+        for (std::size_t n = requests[r].size() / (sizeof(std::uint32_t) * (words + 1)); n > 0; --n) {
+          std::uint32_t kind, found, head[3];
+          take(q, &kind, 1);
+          const auto* key = reinterpret_cast<const std::uint32_t*>(q);
+          q += sizeof(std::uint32_t) * words;
+          take(in, &found, 1);
+          if (!found) continue;
+          take(in, head, 3);
+          Halo& h = halo[kind][j - 1];
+          h.keys.insert(key);
+          h.ids.push_back(head[0]);
+          h.facets.resize(h.facets.size() + head[1]);
+          take(in, h.facets.data() + h.facets.size() - head[1], head[1]);
+          h.facet_offsets.push_back(static_cast<std::uint32_t>(h.facets.size()));
+          h.boundary_facet.push_back(head[2]);
+          if (j - 1 == 0) {
+            h.rows.resize(h.rows.size() + d);
+            take(in, h.rows.data() + h.rows.size() - d, d);
+          }
+        }
+      }
+    });
+  }
+
+  // Each level in global order (this rank's cells merged with the others'), its facets and
+  // boundary facets renumbered into the closure.
+  CellClosure out;
+  CellComplex& local = out.cells;
+  local.ambient_dimension = d;
+  local.manifold_dimension = m;
+  const auto local_id = [&](int kind, int j, std::uint32_t g) {
+    const std::vector<std::uint32_t>& ids = kind ? out.boundary_ids[j] : out.interior_ids[j];
+    const auto at = std::lower_bound(ids.begin(), ids.end(), g);
+    if (at == ids.end() || *at != g) throw std::logic_error("closure_for_writing: a face is missing");
+    return static_cast<std::uint32_t>(at - ids.begin());
+  };
+  for (int j = 0; j <= m; ++j)
+    for (int kind = 0; kind < 2; ++kind) {
+      if (kind == 1 && j >= m) continue;
+      CellLevel level;
+      level.simplices = PackedKeyIndex(words);
+      level.facet_offsets.assign(1, 0);
+      std::vector<std::uint32_t>& ids = (kind ? out.boundary_ids : out.interior_ids).emplace_back();
+      if (j <= top[kind]) {
+        const CellLevel& from = level_of(kind, j);
+        const std::vector<std::uint32_t>& from_ids = ids_of(kind, j);
+        const Halo& h = halo[kind][j];
+        std::vector<std::uint32_t> order(h.ids.size());  // the halo by global id
+        std::iota(order.begin(), order.end(), 0u);
+        std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return h.ids[a] < h.ids[b]; });
+        const bool with_bf = kind == 0 && j >= 1 && has_boundary;
+        const auto append = [&](std::uint32_t g, const std::uint32_t* key, std::span<const std::uint32_t> facets,
+                                std::uint32_t bf, const double* row) {
+          ids.push_back(g);
+          level.simplices.insert(key);
+          for (const std::uint32_t f : facets) level.facet_ids.push_back(local_id(kind, j - 1, f));
+          level.facet_offsets.push_back(static_cast<std::uint32_t>(level.facet_ids.size()));
+          if (with_bf) level.boundary_facet.push_back(bf == CellLevel::kNone ? bf : local_id(1, j - 1, bf));
+          if (row)
+            (kind ? local.boundary_vertices : local.vertices)
+                .insert((kind ? local.boundary_vertices : local.vertices).end(), row, row + d);
+        };
+        const PointArray& rows = kind ? cc.boundary_vertices : cc.vertices;
+        std::size_t next = 0;  // in `order`
+        const auto append_halo_below = [&](std::uint64_t g) {
+          for (; next < order.size() && h.ids[order[next]] < g; ++next) {
+            const std::uint32_t i = order[next];
+            append(h.ids[i], h.keys.key(i),
+                   {h.facets.data() + h.facet_offsets[i], h.facets.data() + h.facet_offsets[i + 1]},
+                   h.boundary_facet[i], j == 0 ? h.rows.data() + std::size_t{i} * d : nullptr);
+          }
+        };
+        for (std::uint32_t c = 0; c < from.size(); ++c)
+          if (mine[kind][j][c]) {
+            append_halo_below(from_ids[c]);
+            append(from_ids[c], from.simplices.key(c), from.facets(c),
+                   from.boundary_facet.empty() ? CellLevel::kNone : from.boundary_facet[c],
+                   j == 0 ? rows.data() + std::size_t{c} * d : nullptr);
+          }
+        append_halo_below(~std::uint64_t{0});
+        level.simplices.release_index();
+        std::vector<std::uint8_t>().swap(mine[kind][j]);
+        halo[kind][j] = Halo(words);
+      }
+      (kind ? local.boundary : local.interior).push_back(std::move(level));
+    }
+  return out;
+}
+
+}  // namespace coxmesh
