@@ -3,8 +3,8 @@
 
 #include <chrono>
 
-#include "coxmesh/mesh/mesh_winding.h"
 #include "coxmesh/mesh/mesh_local_pca.h"
+#include "coxmesh/mesh/mesh_winding.h"
 
 namespace coxmesh {
 
