@@ -304,6 +304,10 @@ LevelView view_of(const CellLevel& l, const std::vector<std::uint32_t>& ids, con
 // (level 0) the vertex coordinates too. Throws InputError unless every cell is in one part.
 CellLevel assemble_level(const std::vector<LevelView>& views, std::uint64_t n, int d, PointArray* rows) {
   if (n >= PackedKeyIndex::kAbsent) throw InputError("too many cells in a level");
+  // (checked before anything of size n is allocated: n may come from a file)
+  std::uint64_t given = 0;
+  for (const LevelView& v : views) given += v.n;
+  if (given != n) throw InputError("the parts of the cell complex do not number its cells once each");
   std::vector<std::uint64_t> where(n, ~std::uint64_t{0});  // per global id: part << 32 | index there
   std::uint64_t entries = 0;
   bool boundary_facets = false;
