@@ -5,6 +5,7 @@
 // algorithm", 2009) when b has no other remaining facet. Either is the elimination of the pivot
 // (a, b) of the boundary matrix, which over Z/2 changes no other entry, so homology is kept. What
 // remains need not be a subcomplex, only a chain complex: the boundary matrix restricted to it.
+#include <algorithm>
 #include <climits>
 
 #include "coxmesh/cell_complex/betti.h"
@@ -181,7 +182,7 @@ class Reducer {
   bool top_is_cut_;
   std::size_t base_;  // the first edge: vertices are all removed
   static constexpr std::size_t kCompactAt = 1 << 16;
-  static constexpr std::size_t kAhead = 8;
+  static constexpr std::size_t kAhead = 16;
   std::vector<Level> levels_;    // (dimension, kind) from the edges to the top
   std::uint32_t below_top_ = 0;  // the cells below the top dimension: [0, below_top_)
   std::vector<Counts> cell_;     // (one cache line holds all four)
@@ -255,7 +256,7 @@ std::vector<std::size_t> betti_numbers(const CellComplex& cc, bool manifold) {
       reducer.reduce();
       for (std::size_t g = 0; g < keep.size(); ++g) keep[g] = !reducer.removed(g);
     }
-    betti = betti_numbers_by_reduction(cc, keep);
+    if (std::find(keep.begin(), keep.end(), 1) != keep.end()) betti = betti_numbers_by_reduction(cc, keep);
   }
   betti[0] += components_count;
   if (manifold) {
