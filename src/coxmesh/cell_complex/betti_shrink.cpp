@@ -109,21 +109,22 @@ class Reducer {
       const std::uint32_t a = pending_[head];
       const Counts& ca = cell_[a];
       if (ca.up == kRemoved) continue;
-      std::uint32_t b;
       const int j = dimension(a);
-      if (ca.down == 1)  // (coreductions first: collapses alone stall on 3-manifolds)
-        b = ca.xdown;
-      else if (ca.up == 1)
-        b = ca.xup;
-      else if (j == top_ && ca.down == 0 && top_is_cut_) {
+      // A pair's cells are removed without visiting the other cell of the pair, nor lists
+      // whose cells are all removed: most visits of random cells are saved.
+      if (ca.down == 1) {  // (coreductions first: collapses alone stall on 3-manifolds)
+        const std::uint32_t b = ca.xdown;
+        remove(a, j, false, ca.up != 0);
+        remove(b, j - 1, cell_[b].down != 0, true);
+      } else if (ca.up == 1) {
+        const std::uint32_t b = ca.xup;
+        remove(a, j, ca.down != 0, false);
+        remove(b, j + 1, true, cell_[b].up != 0);
+      } else if (j == top_ && ca.down == 0 && top_is_cut_) {
         // A cycle of the top dimension of a truncated skeleton: removing it changes only the
         // skeleton's own H_top, which is not wanted.
-        remove(a, j);
-        continue;
-      } else
-        continue;
-      remove(a, j);
-      remove(b, dimension(b));
+        remove(a, j, false, false);
+      }
     }
   }
 
@@ -157,15 +158,18 @@ class Reducer {
   }
 
   // Removes cell a of dimension j (a cell whose homology class is known, or one of a pair).
-  void remove(std::uint32_t a, int j) {
+  // (visit_...: false when every remaining facet or coface is the other cell of the pair, removed
+  // next, or none remains)
+  void remove(std::uint32_t a, int j, bool visit_facets, bool visit_cofaces) {
     cell_[a].up = kRemoved;
-    for_each_facet(a, [&](std::uint32_t f) {
-      Counts& cf = cell_[f];
-      if (cf.up == kRemoved) return;
-      cf.xup ^= a;
-      if (--cf.up == 1) pending_.push_back(f);
-    });
-    if (j < top_)
+    if (visit_facets)
+      for_each_facet(a, [&](std::uint32_t f) {
+        Counts& cf = cell_[f];
+        if (cf.up == kRemoved) return;
+        cf.xup ^= a;
+        if (--cf.up == 1) pending_.push_back(f);
+      });
+    if (visit_cofaces && j < top_)
       for (std::uint32_t i = coface_start_[a]; i < coface_start_[a + 1]; ++i) {
         Counts& cc = cell_[coface_ids_[i]];
         if (cc.up == kRemoved) continue;
