@@ -106,6 +106,14 @@ class Reducer {
           if (f < below_top_) __builtin_prefetch(&coface_ids_[coface_start_[f]]);
         }
       }
+      if (head + kAhead / 2 < pending_.size()) {  // (and the other cell of its pair, if any)
+        const Counts& cf = cell_[pending_[head + kAhead / 2]];
+        if (cf.up != kRemoved && (cf.down == 1 || cf.up == 1)) {
+          const std::uint32_t b = cf.down == 1 ? cf.xdown : cf.xup;
+          __builtin_prefetch(&cell_[b]);
+          if (b < below_top_) __builtin_prefetch(&coface_start_[b]);
+        }
+      }
       const std::uint32_t a = pending_[head];
       const Counts& ca = cell_[a];
       if (ca.up == kRemoved) continue;
