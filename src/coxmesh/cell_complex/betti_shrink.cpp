@@ -114,6 +114,12 @@ class Reducer {
           if (b < below_top_) __builtin_prefetch(&coface_start_[b]);
         }
       }
+      if (head + kAhead / 4 < pending_.size()) {  // (and the cofaces of a coreduction's edge)
+        const Counts& cf = cell_[pending_[head + kAhead / 4]];
+        if (cf.up != kRemoved && cf.down == 1 && cf.xdown < below_top_)
+          for (std::uint32_t i = coface_start_[cf.xdown]; i < coface_start_[cf.xdown + 1]; ++i)
+            __builtin_prefetch(&cell_[coface_ids_[i]]);
+      }
       const std::uint32_t a = pending_[head];
       const Counts& ca = cell_[a];
       if (ca.up == kRemoved) continue;

@@ -31,10 +31,10 @@ std::string check_closed(const CellComplex& cc) {
         if (j == 1) {
           std::size_t ends[2] = {0, 0}, n = 0;
           cells.for_each_facet(1, kind == 1, c, [&](std::size_t v) { ends[n++ % 2] = v; });
+          if (n == 2 && ends[0] != ends[1]) continue;
           const std::string edge = kind ? "a boundary edge cell" : "an edge cell";
           if (n != 2) return edge + " has " + std::to_string(n) + (n == 1 ? " end point" : " end points") + ", not 2";
-          if (ends[0] == ends[1]) return edge + " has the same vertex at both ends";
-          continue;
+          return edge + " has the same vertex at both ends";
         }
         ridges.clear();
         cells.for_each_facet(j, kind == 1, c, [&](std::size_t f) {
