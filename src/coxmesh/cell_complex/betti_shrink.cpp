@@ -51,7 +51,7 @@ class Reducer {
       }
     below_top_ = relative(std::max(c.start(top, false), base_));
     for (std::uint32_t e = 0; e < tree_edge.size() && e < cell_.size(); ++e)
-      if (tree_edge[e]) cell_[e].up = kRemoved;
+      if (tree_edge[e]) cell_[e].up = kRemoved, ++removed_count_;
     const std::uint32_t first_face = top >= 2 ? levels_[2].first : static_cast<std::uint32_t>(cell_.size());
     for (std::uint32_t a = first_face; a < cell_.size(); ++a)
       for_each_facet(a, [&](std::uint32_t f) {
@@ -78,6 +78,8 @@ class Reducer {
     for (std::uint32_t a = 0; a < cell_.size(); ++a)
       if (cell_[a].up != kRemoved && (cell_[a].up == 1 || cell_[a].down <= 1)) pending_.push_back(a);
   }
+
+  std::size_t remaining() const { return cell_.size() - removed_count_; }
 
   bool removed(std::size_t g) const {
     return g < base_ || g - base_ >= cell_.size() || cell_[g - base_].up == kRemoved;
@@ -175,7 +177,7 @@ class Reducer {
   // (visit_...: false when every remaining facet or coface is the other cell of the pair, removed
   // next, or none remains)
   void remove(std::uint32_t a, int j, bool visit_facets, bool visit_cofaces) {
-    cell_[a].up = kRemoved;
+    cell_[a].up = kRemoved, ++removed_count_;
     if (visit_facets)
       for_each_facet(a, [&](std::uint32_t f) {
         Counts& cf = cell_[f];
@@ -203,7 +205,8 @@ class Reducer {
   static constexpr std::size_t kAhead = 16;
   std::vector<Level> levels_;    // (dimension, kind) from the edges to the top
   std::uint32_t below_top_ = 0;  // the cells below the top dimension: [0, below_top_)
-  std::vector<Counts> cell_;     // (one cache line holds all four)
+  std::size_t removed_count_ = 0;
+  std::vector<Counts> cell_;  // (one cache line holds all four)
   std::vector<std::uint32_t> coface_start_;
   std::vector<std::uint32_t> coface_ids_;
   std::vector<std::uint32_t> pending_;  // FIFO of cells whose count became 1 (the order matters:
@@ -268,13 +271,16 @@ std::vector<std::size_t> betti_numbers(const CellComplex& cc, bool manifold) {
     // Deletions start from one vertex per component, a 0-cycle that no chain bounds (removing it
     // lowers β_0 by one and changes nothing else), and spread along the spanning forest.
     if (cells.count() > UINT32_MAX) throw InputError("the complex has too many cells (2^32) for its topology");
-    std::vector<std::uint8_t> keep(cells.count());
+    std::vector<std::uint8_t> keep;  // (empty when nothing is left)
     {  // (its arrays go before the reduction's: they are the peak of the topology's memory)
       Reducer reducer(cells, top, top < m, tree_edge);
       reducer.reduce();
-      for (std::size_t g = 0; g < keep.size(); ++g) keep[g] = !reducer.removed(g);
+      if (reducer.remaining() > 0) {
+        keep.resize(cells.count());
+        for (std::size_t g = 0; g < keep.size(); ++g) keep[g] = !reducer.removed(g);
+      }
     }
-    if (std::find(keep.begin(), keep.end(), 1) != keep.end()) betti = betti_numbers_by_reduction(cc, keep);
+    if (!keep.empty()) betti = betti_numbers_by_reduction(cc, keep);
   }
   betti[0] += components_count;
   if (manifold) {
