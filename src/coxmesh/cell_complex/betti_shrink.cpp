@@ -116,6 +116,11 @@ class Reducer {
           if (b < below_top_) __builtin_prefetch(&coface_start_[b]);
         }
       }
+      if (head + kAhead * 3 / 8 < pending_.size()) {  // (the list of those cofaces)
+        const Counts& cf = cell_[pending_[head + kAhead * 3 / 8]];
+        if (cf.up != kRemoved && cf.down == 1 && cf.xdown < below_top_)
+          __builtin_prefetch(&coface_ids_[coface_start_[cf.xdown]]);
+      }
       if (head + kAhead / 4 < pending_.size()) {  // (and the cofaces of a coreduction's edge)
         const Counts& cf = cell_[pending_[head + kAhead / 4]];
         if (cf.up != kRemoved && cf.down == 1 && cf.xdown < below_top_)
