@@ -105,7 +105,7 @@ class Reducer {
         if (cell_[f].up != kRemoved) {
           const Level& l = level_of(f);
           if (l.offsets) __builtin_prefetch(&l.ids[l.offsets[f - l.first]]);
-          if (f < below_top_) __builtin_prefetch(&coface_ids_[coface_start_[f]]);
+          if (f < below_top_) __builtin_prefetch(coface_ids_.data() + coface_start_[f]);
         }
       }
       if (head + kAhead / 2 < pending_.size()) {  // (and the other cell of its pair, if any)
@@ -119,7 +119,7 @@ class Reducer {
       if (head + kAhead * 3 / 8 < pending_.size()) {  // (the list of those cofaces)
         const Counts& cf = cell_[pending_[head + kAhead * 3 / 8]];
         if (cf.up != kRemoved && cf.down == 1 && cf.xdown < below_top_)
-          __builtin_prefetch(&coface_ids_[coface_start_[cf.xdown]]);
+          __builtin_prefetch(coface_ids_.data() + coface_start_[cf.xdown]);
       }
       if (head + kAhead / 4 < pending_.size()) {  // (and the cofaces of a coreduction's edge)
         const Counts& cf = cell_[pending_[head + kAhead / 4]];
