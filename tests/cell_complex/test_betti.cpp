@@ -11,6 +11,7 @@
 #include "coxmesh/cell_complex/betti.h"
 #include "coxmesh/cell_complex/topology.h"
 #include "coxmesh/mesh/mesh_manifold.h"
+#include "coxmesh/oracle/expression_function.h"
 
 using namespace coxmesh;
 
@@ -190,4 +191,69 @@ TEST(Betti, RotationGroupIsTheRealProjectiveSpace) {  // SO(3) ≅ RP³: Z/2 Bet
   const TopologyReport report = mesh_manifold(t, [&] { return ManifoldFunctions{so3, nullptr}; }, {}).topology;
   EXPECT_TRUE(report.is_manifold) << report.manifold_problem;
   EXPECT_EQ(report.betti, (std::vector<std::size_t>{1, 1, 1, 1}));
+}
+
+// 3-manifolds, where only the 2-skeleton is reduced after coreductions: closed with cells left for
+// the final reduction (T³) or none (S³), two components, with boundary, and a truncated run.
+TEST(Betti, ThreeManifoldsAgreeWithTheReference) {
+  struct Case {
+    const char* name;
+    FunctionPtr f, domain;
+    Triangulation t;
+    std::vector<std::vector<double>> seeds;
+    std::vector<std::size_t> betti;
+  };
+  const Case cases[] = {
+      {"T3 in R6",
+       expression_function("x1^2+x2^2-1; x3^2+x4^2-1; x5^2+x6^2-1", 6),
+       nullptr,
+       Triangulation::coxeter(6).with_longest_edge(1.3),
+       {},
+       {1, 3, 3, 1}},
+      {"S3 in R4", sphere(3, 4, 1.0), nullptr, Triangulation::coxeter(4).with_longest_edge(0.4), {}, {1, 0, 0, 1}},
+      {"two 3-spheres",
+       expression_function("(x^2+y^2+z^2+w^2-1)*((x-3)^2+y^2+z^2+w^2-1)", 4),
+       nullptr,
+       Triangulation::coxeter(4).with_longest_edge(0.4),
+       {{1, 0, 0, 0}, {4, 0, 0, 0}},
+       {2, 0, 0, 2}},
+      {"T3 in R6 cut by a ball",
+       expression_function("x1^2+x2^2-1; x3^2+x4^2-1; x5^2+x6^2-1", 6),
+       ball_domain({1, 0, 1, 0, 1, 0}, 0.9),
+       Triangulation::coxeter(6).with_longest_edge(0.6),
+       {{1, 0, 1, 0, 1, 0}},
+       {1, 0, 0, 0}},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    MeshOptions options;
+    options.seeds = c.seeds;
+    const MeshReport mesh = mesh_manifold(
+        c.t,
+        [&] {
+          return ManifoldFunctions{c.f, c.domain};
+        },
+        options);
+    const CellComplex& cc = mesh.cells;
+    const TopologyReport& report = mesh.topology;
+    ASSERT_TRUE(report.is_manifold) << report.manifold_problem;
+    EXPECT_EQ(report.betti, c.betti);
+    EXPECT_EQ(betti_numbers_by_reduction(cc), report.betti);
+    EXPECT_EQ(betti_numbers(cc, false), report.betti);
+  }
+  {
+    SCOPED_TRACE("truncated T3 in R6: open, no Betti numbers");
+    MeshOptions options;
+    options.trace.max_simplices = 2000;
+    const FunctionPtr t3 = expression_function("x1^2+x2^2-1; x3^2+x4^2-1; x5^2+x6^2-1", 6);
+    const MeshReport mesh = mesh_manifold(
+        Triangulation::coxeter(6).with_longest_edge(1.3),
+        [&] {
+          return ManifoldFunctions{t3, nullptr};
+        },
+        options);
+    EXPECT_NE(mesh.status, TraceStatus::complete);
+    EXPECT_FALSE(mesh.topology.closed);
+    EXPECT_TRUE(mesh.topology.betti.empty());
+  }
 }

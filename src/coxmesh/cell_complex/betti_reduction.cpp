@@ -6,6 +6,7 @@
 #include <phat/representations/full_pivot_column.h>
 
 #include <algorithm>
+#include <climits>
 
 #include "coxmesh/cell_complex/betti.h"
 #include "coxmesh/cell_complex/global_cells.h"
@@ -18,12 +19,14 @@ std::vector<std::size_t> betti_numbers_by_reduction(const CellComplex& cc, std::
   const std::size_t n = cells.count();
   const bool all = keep.empty();
   // Kept cells numbered in the global order (by dimension, so every facet comes first).
-  constexpr std::size_t kDropped = ~std::size_t{0};
-  std::vector<std::size_t> column(n, kDropped);
+  // (32-bit: the array spans all cells, of which few may be kept)
+  if (n >= UINT32_MAX) throw InputError("the complex has too many cells (2^32) for its topology");
+  constexpr std::uint32_t kDropped = UINT32_MAX;
+  std::vector<std::uint32_t> column(n, kDropped);
   std::vector<int> dim_of;
   for (int j = 0; j <= m; ++j)
     for (std::size_t g = cells.start(j, false); g < cells.start(j + 1, false); ++g)
-      if (all || keep[g]) column[g] = dim_of.size(), dim_of.push_back(j);
+      if (all || keep[g]) column[g] = static_cast<std::uint32_t>(dim_of.size()), dim_of.push_back(j);
   // full_pivot_column: bit_tree_pivot_column negates INT64_MIN, which UBSan rejects.
   phat::boundary_matrix<phat::full_pivot_column> matrix;
   matrix.set_num_cols(static_cast<phat::index>(dim_of.size()));

@@ -26,6 +26,7 @@ class GlobalCells {
   /// First global id of level j of the given kind; its cells are numbered consecutively.
   std::size_t start(int j, bool boundary) const { return start_[2 * j + boundary]; }
   int manifold_dimension() const { return cc_.manifold_dimension; }
+  const CellComplex& complex() const { return cc_; }
 
   /// Calls f(global id) for every facet of cell `local` of level j (j ≥ 1) of the given kind; an
   /// interior cell cut by the domain also has the boundary cell on its simplex as a facet.

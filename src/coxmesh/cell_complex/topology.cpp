@@ -24,24 +24,41 @@ std::string check_closed(const CellComplex& cc) {
   const GlobalCells cells(cc);
   std::vector<std::uint8_t> odd(cells.count(), 0);  // per ridge: parity of its count so far
   std::vector<std::size_t> ridges;
+  const auto toggle = [&](std::size_t r) {
+    if ((odd[r] ^= 1)) ridges.push_back(r);
+  };
+  // The end points of this kind's edges, two per edge in one array: a polygon's vertices are then
+  // found with one scattered read per edge, not two (the edge's list, then its ids).
+  std::vector<std::size_t> end_points;
+  constexpr std::uint32_t kAhead = 8;  // (the polygons whose end points are fetched ahead)
   for (int kind = 0; kind < 2; ++kind) {
     const auto& levels = kind ? cc.boundary : cc.interior;
+    if (levels.size() > 1) end_points.resize(2 * std::size_t{levels[1].size()});
     for (int j = 1; j < static_cast<int>(levels.size()); ++j)
       for (std::uint32_t c = 0; c < levels[j].size(); ++c) {
         if (j == 1) {
           std::size_t ends[2] = {0, 0}, n = 0;
           cells.for_each_facet(1, kind == 1, c, [&](std::size_t v) { ends[n++ % 2] = v; });
+          if (n == 2 && ends[0] != ends[1]) {
+            end_points[2 * std::size_t{c}] = ends[0], end_points[2 * std::size_t{c} + 1] = ends[1];
+            continue;
+          }
           const std::string edge = kind ? "a boundary edge cell" : "an edge cell";
           if (n != 2) return edge + " has " + std::to_string(n) + (n == 1 ? " end point" : " end points") + ", not 2";
-          if (ends[0] == ends[1]) return edge + " has the same vertex at both ends";
-          continue;
+          return edge + " has the same vertex at both ends";
         }
         ridges.clear();
-        cells.for_each_facet(j, kind == 1, c, [&](std::size_t f) {
-          cells.for_each_facet(f, [&](std::size_t r) {
-            if ((odd[r] ^= 1)) ridges.push_back(r);
-          });
-        });
+        if (j == 2) {
+          const CellLevel& level = levels[2];
+          if (c + kAhead < level.size())
+            for (std::uint32_t e : level.facets(c + kAhead)) __builtin_prefetch(&end_points[2 * std::size_t{e}]);
+          for (std::uint32_t e : level.facets(c))
+            toggle(end_points[2 * std::size_t{e}]), toggle(end_points[2 * std::size_t{e} + 1]);
+          if (!kind && !level.boundary_facet.empty() && level.boundary_facet[c] != CellLevel::kNone)
+            cells.for_each_facet(1, true, level.boundary_facet[c], toggle);
+        } else {
+          cells.for_each_facet(j, kind == 1, c, [&](std::size_t f) { cells.for_each_facet(f, toggle); });
+        }
         bool closed = true;
         for (std::size_t r : ridges) closed &= odd[r] == 0, odd[r] = 0;
         if (!closed) return "a " + std::to_string(j) + "-cell is not closed (a face of its boundary is not shared)";
