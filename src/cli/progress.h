@@ -7,11 +7,9 @@
 #include <cstdio>
 #include <string>
 
+#include "coxmesh/util/stopwatch.h"
+
 namespace coxmesh::cli {
-
-using Clock = std::chrono::steady_clock;
-
-inline double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // Progress on stderr once a run has lasted about a second: one updated line on a terminal, plain
 // lines (at most one every 2 s) otherwise. Never used with --json or --quiet.

@@ -1,17 +1,9 @@
 #include "coxmesh/mesh/mesh_local_pca.h"
 
-#include <chrono>
-
+#include "coxmesh/mesh/complex_and_topology.h"
 #include "coxmesh/tracing/local_pca_oracle.h"
 
 namespace coxmesh {
-
-namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-}  // namespace
 
 LocalPcaResult mesh_local_pca(const Triangulation& t, const PointCloudProblem& p, const TraceOptions& options) {
   const PointCloudDiagnostics& g = p.diagnostics;
@@ -31,12 +23,7 @@ LocalPcaResult mesh_local_pca(const Triangulation& t, const PointCloudProblem& p
   r.oracle_calls = traced.oracle_calls;
   r.defects = count_defects(traced, oracle);
   r.function_evaluations = oracle.function_evaluations();
-  const auto t1 = Clock::now();
-  r.cells = build_cell_complex(std::move(traced));
-  r.cell_complex_seconds = seconds_since(t1);
-  const auto t2 = Clock::now();
-  r.topology = analyze_topology(r.cells);
-  r.topology_seconds = seconds_since(t2);
+  build_complex_and_topology(std::move(traced), r);
   return r;
 }
 

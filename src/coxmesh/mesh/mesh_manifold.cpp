@@ -1,7 +1,6 @@
 #include "coxmesh/mesh/mesh_manifold.h"
 
 #include <algorithm>
-#include <chrono>
 #include <exception>
 #include <thread>
 
@@ -10,13 +9,12 @@
 #include "coxmesh/tracing/seeds.h"
 #include "coxmesh/tracing/trace_strata.h"
 #include "coxmesh/util/parallel_for.h"
+#include "coxmesh/util/stopwatch.h"
 
 namespace coxmesh {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 MeshReport finish(MeshReport&& report, const MeshOptions& o, const WhileTopology& while_topology);
 
 constexpr const char* kSingularOnTracedSet =

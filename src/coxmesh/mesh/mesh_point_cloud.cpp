@@ -1,10 +1,9 @@
 // Point clouds in one call; see mesh_point_cloud.h and docs/point_clouds.md.
 #include "coxmesh/mesh/mesh_point_cloud.h"
 
-#include <chrono>
-
 #include "coxmesh/mesh/mesh_local_pca.h"
 #include "coxmesh/mesh/mesh_winding.h"
+#include "coxmesh/util/stopwatch.h"
 
 namespace coxmesh {
 
@@ -53,7 +52,7 @@ std::string sample_oracle_name(SampleOracle oracle) {
 
 PreparedPointCloud prepare_samples(std::vector<double> samples, int d, SampleSource source,
                                    const PointCloudMeshOptions& options) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto t0 = Clock::now();
   PreparedPointCloud pc;
   pc.source = std::move(source);
   pc.problem = make_point_cloud_problem(std::move(samples), d, options.m.value_or(d - 1), options.preparation);
@@ -64,7 +63,7 @@ PreparedPointCloud prepare_samples(std::vector<double> samples, int d, SampleSou
   } else {
     pc.oracle = options.oracle;
   }
-  pc.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  pc.seconds = seconds_since(t0);
   return pc;
 }
 

@@ -1,17 +1,12 @@
 #include "coxmesh/mesh/mesh_winding.h"
 
 #include <atomic>
-#include <chrono>
 
+#include "coxmesh/mesh/complex_and_topology.h"
 #include "coxmesh/tracing/local_pca_oracle.h"
 #include "coxmesh/tracing/normal_winding_oracle.h"
 
 namespace coxmesh {
-
-namespace {
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-}  // namespace
 
 WindingMeshResult mesh_normal_winding(const Triangulation& t, const PointCloudProblem& p, const TraceOptions& options) {
   const PointCloudDiagnostics& g = p.diagnostics;
@@ -52,12 +47,7 @@ WindingMeshResult mesh_normal_winding(const Triangulation& t, const PointCloudPr
     r.function_evaluations += check.function_evaluations();
     r.check_seconds = seconds_since(t1);
   }
-  const auto t2 = Clock::now();
-  r.cells = build_cell_complex(std::move(traced));
-  r.cell_complex_seconds = seconds_since(t2);
-  const auto t3 = Clock::now();
-  r.topology = analyze_topology(r.cells);
-  r.topology_seconds = seconds_since(t3);
+  build_complex_and_topology(std::move(traced), r);
   return r;
 }
 

@@ -5,7 +5,6 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <bit>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -13,6 +12,7 @@
 
 #include "coxmesh/errors.h"
 #include "coxmesh/util/parallel_for.h"
+#include "coxmesh/util/stopwatch.h"
 
 namespace coxmesh {
 
@@ -137,7 +137,7 @@ std::uint64_t stratum_of(const CellComplex& cc, std::size_t v, std::size_t inter
 
 RefinementReport refine_vertices(CellComplex& cc, double longest_edge, const RefineFunctions& make,
                                  const RefineOptions& options) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto t0 = Clock::now();
   const int d = cc.ambient_dimension;
   if (d > kMax - 1) throw InputError("refinement: d must be at most 31");
   const std::size_t n0 = cc.vertices.size() / std::max(d, 1), nb = cc.boundary_vertices.size() / std::max(d, 1);
@@ -186,7 +186,7 @@ RefinementReport refine_vertices(CellComplex& cc, double longest_edge, const Ref
     report.max_abs_f_after = std::max(report.max_abs_f_after, res.after);
     report.not_refined += res.not_refined;
   }
-  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  report.seconds = seconds_since(t0);
   return report;
 }
 
