@@ -88,6 +88,22 @@ class ThreadCommunicator final : public Communicator {
   int rank_;
 };
 
+// What one rank walks with: its own vertex values, the oracle over them, and F at the vertices it owns.
+struct RankOracle {
+  RankOracle(const Triangulation& t, const FunctionPtr& f, const FunctionPtr& domain)
+      : values(ImplicitOracle::make_shared_values(t, f, domain)),
+        oracle(t, f, domain, values),
+        evaluate([&t, f, domain](const std::int32_t* v, double* out) {
+          double x[kMaxDimension];
+          t.cartesian(v, x);
+          f->evaluate(x, out);
+          if (domain) domain->evaluate(x, out + f->codimension());
+        }) {}
+  std::shared_ptr<SharedVertexValues> values;
+  ImplicitOracle oracle;
+  VertexEvaluator evaluate;
+};
+
 // Traces on `ranks` threads; returns rank 0's result, or rethrows each rank's exception message.
 TraceResult trace_on_ranks(int ranks, const Triangulation& t, const FunctionPtr& f, const FunctionPtr& domain,
                            const std::vector<std::vector<double>>& seeds, const TraceOptions& options,
@@ -99,16 +115,9 @@ TraceResult trace_on_ranks(int ranks, const Triangulation& t, const FunctionPtr&
   for (int r = 0; r < ranks; ++r)
     threads.emplace_back([&, r] {
       ThreadCommunicator comm(mailboxes, r);
-      const auto values = ImplicitOracle::make_shared_values(t, f, domain);
-      ImplicitOracle oracle(t, f, domain, values);
-      const VertexEvaluator evaluate = [&](const std::int32_t* v, double* out) {
-        double x[kMaxDimension];
-        t.cartesian(v, x);
-        f->evaluate(x, out);
-        if (domain) domain->evaluate(x, out + f->codimension());
-      };
+      RankOracle o(t, f, domain);
       try {
-        TraceResult result = trace_manifold_distributed(t, oracle, *values, evaluate, seeds, options, comm);
+        TraceResult result = trace_manifold_distributed(t, o.oracle, *o.values, o.evaluate, seeds, options, comm);
         if (r == 0) root = std::move(result);
       } catch (const std::exception& e) {
         errors[r] = e.what();
@@ -132,16 +141,9 @@ std::vector<CellComplexPart> cell_parts_on_ranks(int ranks, const Triangulation&
   for (int r = 0; r < ranks; ++r)
     threads.emplace_back([&, r] {
       ThreadCommunicator comm(mailboxes, r);
-      const auto values = ImplicitOracle::make_shared_values(t, f, domain);
-      ImplicitOracle oracle(t, f, domain, values);
-      const VertexEvaluator evaluate = [&](const std::int32_t* v, double* out) {
-        double x[kMaxDimension];
-        t.cartesian(v, x);
-        f->evaluate(x, out);
-        if (domain) domain->evaluate(x, out + f->codimension());
-      };
+      RankOracle o(t, f, domain);
       parts[r] = build_cell_complex_distributed(
-          trace_part_distributed(t, oracle, *values, evaluate, seeds, options, comm), comm);
+          trace_part_distributed(t, o.oracle, *o.values, o.evaluate, seeds, options, comm), comm);
       if (closures) {
         CellComplexPart copy = parts[r];
         (*closures)[r] = closure_for_writing(copy, comm);
