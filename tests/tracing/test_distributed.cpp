@@ -88,6 +88,15 @@ class ThreadCommunicator final : public Communicator {
   int rank_;
 };
 
+// A manifold to trace on several ranks and in one process.
+struct Case {
+  std::string name;
+  FunctionPtr f, domain;
+  Triangulation t;
+  std::vector<std::vector<double>> seeds;
+  std::size_t max_simplices = TraceOptions{}.max_simplices;
+};
+
 // What one rank walks with: its own vertex values, the oracle over them, and F at the vertices it owns.
 struct RankOracle {
   RankOracle(const Triangulation& t, const FunctionPtr& f, const FunctionPtr& domain)
@@ -243,13 +252,6 @@ void expect_closures_of(const CellComplex& one, const std::vector<CellComplexPar
 }  // namespace
 
 TEST(DistributedCellComplex, EveryLevelAsOneProcessNumbersIt) {
-  struct Case {
-    std::string name;
-    FunctionPtr f, domain;
-    Triangulation t;
-    std::vector<std::vector<double>> seeds;
-    std::size_t max_simplices = TraceOptions{}.max_simplices;
-  };
   const std::vector<Case> cases = {
       {"circle", sphere(1, 2, 1.0), nullptr, Triangulation::coxeter(2).with_longest_edge(0.02), {}},
       {"S2 in R3", sphere(2, 3, 1.0), nullptr, Triangulation::coxeter(3).with_longest_edge(0.15), {}},
@@ -301,13 +303,6 @@ TEST(DistributedCellComplex, EveryLevelAsOneProcessNumbersIt) {
 }
 
 TEST(DistributedTracing, IdenticalForEveryNumberOfRanks) {
-  struct Case {
-    std::string name;
-    FunctionPtr f, domain;
-    Triangulation t;
-    std::vector<std::vector<double>> seeds;
-    std::size_t max_simplices = TraceOptions{}.max_simplices;
-  };
   const std::vector<Case> cases = {
       {"S2 in R3", sphere(2, 3, 1.0), nullptr, Triangulation::coxeter(3).with_longest_edge(0.08), {}},
       {"torus, FK, vertices on M", torus(1.0, 0.5), nullptr, Triangulation::freudenthal(3).scaled(0.125), {}},

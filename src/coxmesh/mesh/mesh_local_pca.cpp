@@ -15,12 +15,7 @@ LocalPcaResult mesh_local_pca(const Triangulation& t, const PointCloudProblem& p
   const auto t0 = Clock::now();
   TraceResult traced = trace_manifold(t, oracle, p.seeds, o);
   r.trace_seconds = seconds_since(t0);
-  if (traced.simplices.size() == 0)
-    throw InputError("no simplex near the " + std::to_string(p.seeds.size()) +
-                     " seeds meets the manifold: the triangulation is too coarse for it (give a smaller edge length)");
-  r.status = traced.status;
-  r.message = traced.message;
-  r.oracle_calls = traced.oracle_calls;
+  record_trace(traced, p.seeds.size(), r);
   r.defects = count_defects(traced, oracle);
   r.function_evaluations = oracle.function_evaluations();
   build_complex_and_topology(std::move(traced), r);

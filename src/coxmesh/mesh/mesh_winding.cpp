@@ -28,12 +28,7 @@ WindingMeshResult mesh_normal_winding(const Triangulation& t, const PointCloudPr
       },
       p.seeds, o);
   r.trace_seconds = seconds_since(t0);
-  if (traced.simplices.size() == 0)
-    throw InputError("no simplex near the " + std::to_string(p.seeds.size()) +
-                     " seeds meets the manifold: the triangulation is too coarse for it (give a smaller edge length)");
-  r.status = traced.status;
-  r.message = traced.message;
-  r.oracle_calls = traced.oracle_calls;
+  record_trace(traced, p.seeds.size(), r);
   r.function_evaluations = traced.function_evaluations;
   // A complete walk has tested every facet of every cofacet of the trace. When none was uncertain,
   // each of those tetrahedra has an even count (NormalWindingOracle::uncertain_triangles), and
