@@ -5,8 +5,20 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
+
+#include "coxmesh/errors.h"
 
 namespace coxmesh {
+
+void check_manifold_function(const FunctionPtr& f, int d) {
+  if (!f) throw InputError("no implicit function given");
+  if (f->ambient_dimension() != d)
+    throw InputError("the function is defined on R^" + std::to_string(f->ambient_dimension()) +
+                     " but the triangulation is of R^" + std::to_string(d));
+  if (f->codimension() < 1 || f->codimension() > d)
+    throw InputError("the number of equations must be between 1 and " + std::to_string(d));
+}
 
 namespace {
 void require(bool ok, const std::string& what) {

@@ -31,6 +31,10 @@ class ImplicitFunction {
 
 using FunctionPtr = std::shared_ptr<const ImplicitFunction>;
 
+/// Throws InputError unless f is given and maps R^d to R^k with 1 ≤ k ≤ d: a manifold an oracle of
+/// a triangulation of R^d can trace.
+void check_manifold_function(const FunctionPtr& f, int d);
+
 /// A callable as an implicit function: `fn(const double* x, double* value)`.
 template <class Fn>
 class CallableFunction final : public ImplicitFunction {

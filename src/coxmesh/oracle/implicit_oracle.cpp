@@ -19,13 +19,9 @@ ImplicitOracle::ImplicitOracle(const Triangulation& triangulation, FunctionPtr f
       domain_(std::move(domain)),
       shared_(std::move(shared)),
       cache_(1) {
-  if (!f_) throw InputError("no implicit function given");
   d_ = triangulation_.dimension();
+  check_manifold_function(f_, d_);
   k_ = f_->codimension();
-  if (f_->ambient_dimension() != d_)
-    throw InputError("the function is defined on R^" + std::to_string(f_->ambient_dimension()) +
-                     " but the triangulation is of R^" + std::to_string(d_));
-  if (k_ < 1 || k_ > d_) throw InputError("the number of equations must be between 1 and " + std::to_string(d_));
   if (domain_ && (domain_->ambient_dimension() != d_ || domain_->codimension() != 1))
     throw InputError("the domain function must map R^" + std::to_string(d_) + " to R");
   stride_ = k_ + (domain_ ? 1 : 0);

@@ -16,13 +16,9 @@ constexpr int kMaxRows = 32;  // transversality.h's largest system
 
 StratifiedOracle::StratifiedOracle(const Triangulation& triangulation, FunctionPtr f, std::vector<FunctionPtr> domains)
     : triangulation_(triangulation), f_(std::move(f)), domains_(std::move(domains)), vertices_(1) {
-  if (!f_) throw InputError("no implicit function given");
   d_ = triangulation_.dimension();
+  check_manifold_function(f_, d_);
   k_ = f_->codimension();
-  if (f_->ambient_dimension() != d_)
-    throw InputError("the function is defined on R^" + std::to_string(f_->ambient_dimension()) +
-                     " but the triangulation is of R^" + std::to_string(d_));
-  if (k_ < 1 || k_ > d_) throw InputError("the number of equations must be between 1 and " + std::to_string(d_));
   if (domains_.size() > static_cast<std::size_t>(kMaxDomains))
     throw InputError("at most " + std::to_string(kMaxDomains) + " domain functions, got " +
                      std::to_string(domains_.size()));
