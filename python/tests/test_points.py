@@ -51,11 +51,11 @@ def test_rp2_gets_the_winding_oracle():
     mesh = coxmesh.trace(points=rp2(), m=2)
     pc = mesh.summary()["point_cloud"]
     assert pc["oracle"] == "winding" and pc["oracle_reason"].startswith("chosen because")
-    assert not pc["frames_consistent"] and "warning" not in pc
+    assert not pc["frames_consistent"] and "warnings" not in pc
     assert mesh.betti == [1, 1, 1] and mesh.euler_characteristic == 1 and mesh.is_manifold
     # Asked for the per-vertex function instead, the frames' warning comes with it.
     vertex = coxmesh.trace(points=rp2(), m=2, oracle="vertex").summary()["point_cloud"]
-    assert vertex["oracle"] == "vertex" and "cannot be made consistent" in vertex["warning"]
+    assert vertex["oracle"] == "vertex" and any("cannot be made consistent" in w for w in vertex["warnings"])
     # A bound besides the tube needs the per-vertex function: auto keeps to it, winding refuses it.
     boxed = coxmesh.trace(points=rp2(), m=2, box=[-1] * 4 + [1] * 4).summary()["point_cloud"]
     assert boxed["oracle"] == "vertex" and not boxed["frames_consistent"]

@@ -82,8 +82,8 @@ void run(TraceCliOptions o) {
   if (from_points) {
     cloud = load_point_cloud(o.points, o.m_option->count() ? std::optional<int>(o.params.m) : std::nullopt,
                              o.params.dim, o.tri.edge_length, o.threads, domains_given || !o.box.empty() || o.refine);
-    if (!cloud->frames_warning().empty() && !o.quiet)
-      std::cerr << "coxmesh: warning: " << cloud->frames_warning() << "\n";
+    for (const std::string& w : cloud->warnings())
+      if (!o.quiet) std::cerr << "coxmesh: warning: " << w << "\n";
   }
   if (!from_text && !cloud && !o.center.empty()) o.params.center = parse_point(o.center, "--center");
   std::function<ManifoldFunctions()> make_problem = [&o, &cloud, from_text]() -> ManifoldFunctions {

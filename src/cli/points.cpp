@@ -69,8 +69,7 @@ void print_point_cloud(std::ostream& os, const PreparedPointCloud& pc) {
      << "  frames             " << g.frustrated_edges << " of " << g.compared_edges
      << " compared neighbour-graph edges frustrated" << (g.used_given_normals ? " (normals from the file)" : "")
      << "; samples read and prepared in " << pc.seconds << " s\n";
-  // (The winding oracle meshes what the warning is about: its own line says so.)
-  if (!pc.frames_warning().empty()) os << "  warning: " << pc.frames_warning() << "\n";
+  for (const std::string& w : pc.warnings()) os << "  warning: " << w << "\n";
 }
 
 }  // namespace coxmesh::cli

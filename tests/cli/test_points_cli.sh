@@ -48,7 +48,7 @@ check "points threads same file" "yes" "$(cmp -s t1.ply t3.ply && [[ -s t1.ply ]
 err=$("$bin" trace --points rp2.txt --m 2 --oracle vertex --no-output 2>&1 >/dev/null)
 check "rp2 vertex warning" "1" "$(grep -c '^coxmesh: warning: .*frustrated\|^coxmesh: warning: .*cannot be trusted' <<<"$err")"
 json=$("$bin" trace --points rp2.txt --m 2 --oracle vertex --json 2>/dev/null | tr -d ' \n')
-check "rp2 vertex json" "1 1" "$(grep -c '"frames_consistent":false' <<<"$json") $(grep -c '"warning":' <<<"$json")"
+check "rp2 vertex json" "1 1" "$(grep -c '"frames_consistent":false' <<<"$json") $(grep -c '"warnings":' <<<"$json")"
 out=$("$bin" trace --points rp2.txt --m 2 --no-output 2>&1)
 check "rp2 winding" "1 1 1 0" "$(grep -c 'Betti numbers (Z/2) 1 1 1' <<<"$out") $(grep -c 'manifold check     passed' <<<"$out") \
 $(grep -c '^  oracle             winding (chosen because the normal frames look non-orientable): 0 tetrahedra' <<<"$out") \
@@ -56,7 +56,7 @@ $(grep -c 'warning' <<<"$out")"
 json=$("$bin" trace --points rp2.txt --m 2 --json 2>/dev/null | tr -d ' \n')
 check "rp2 winding json" "1 1 1 1 0" "$(grep -c '"betti":\[1,1,1\]' <<<"$json") $(grep -c '"euler_characteristic":1,' <<<"$json") \
 $(grep -c '"oracle":"winding","oracle_reason":"chosenbecause' <<<"$json") $(grep -c '"winding_odd_tetrahedra":0' <<<"$json") \
-$(grep -c '"warning":' <<<"$json")"
+$(grep -c '"warnings":' <<<"$json")"
 awk 'BEGIN { n = 2500; pi = 3.14159265358979; g = (sqrt(5) - 1) / 2;
   for (i = 0; i < n; i++) { u = 2 * pi * (i + 0.5) / n; v = 2 * pi * (i * g - int(i * g)); r = 1 + 0.4 * cos(v);
     e = 0.005 * sin(12.9898 * i); f = 0.005 * cos(78.233 * i);

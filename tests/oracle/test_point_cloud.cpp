@@ -86,6 +86,8 @@ TEST_P(Synthetic, RightTopology) {
   EXPECT_TRUE(o.topology.is_manifold) << o.topology.manifold_problem;
   EXPECT_EQ(o.topology.betti, c.betti);
   EXPECT_FALSE(o.diagnostics.frames_inconsistent) << o.diagnostics.warning;
+  EXPECT_TRUE(o.diagnostics.dimension_warning.empty()) << o.diagnostics.dimension_warning;
+  EXPECT_GE(o.diagnostics.apparent_dimension, s.m);  // (more with curvature and noise)
   // (Around a closed space curve the frames carried along the tree meet again turned by the
   // holonomy of the normal bundle: a few edges there are frustrated, far fewer than flag it.)
   if (s.m >= 2 || s.d == 2) {
@@ -141,6 +143,33 @@ TEST(PointCloud, NonOrientableIsFlagged) {
       EXPECT_NE(o.diagnostics.warning.find(std::to_string(o.diagnostics.frustrated_edges)), std::string::npos);
       EXPECT_TRUE(o.topology.is_manifold);  // still a PL manifold: only its topology is wrong
       EXPECT_NE(o.topology.betti[2], 1u);   // RP² and the Klein bottle are closed: β₂ = 1 over Z/2
+    }
+  }
+}
+
+TEST(PointCloud, LowerDimensionalSamplesAreFlagged) {
+  // Samples of a curve given as a surface (the default m = d − 1 for a space curve), of a surface in
+  // R⁴ given as a 3-manifold: what is traced is a thin band or shell around them, a manifold of the
+  // dimension asked for but with other Betti numbers, so the diagnostics must say so.
+  struct Wrong {
+    const char* name;
+    int m;
+  };
+  // (Noise 0.001: a fifth of the trefoil's spacing.)
+  for (const Wrong w : {Wrong{"trefoil", 2}, Wrong{"flat-torus", 3}, Wrong{"trefoil", 1}, Wrong{"sphere", 2}}) {
+    for (double noise : {0.0, 0.001}) {
+      const test::Samples s = test::sample_manifold(w.name, 2000, noise);
+      const int m = w.m;
+      const Outcome o = mesh(s.points, s.d, m);
+      EXPECT_EQ(o.diagnostics.apparent_dimension, s.m) << w.name << " " << noise;
+      if (m > s.m) {
+        EXPECT_NE(o.diagnostics.dimension_warning.find("look " + std::to_string(s.m) + "-dimensional, not " +
+                                                       std::to_string(m) + "-dimensional"),
+                  std::string::npos)
+            << w.name << ": " << o.diagnostics.dimension_warning;
+      } else {
+        EXPECT_TRUE(o.diagnostics.dimension_warning.empty()) << w.name << ": " << o.diagnostics.dimension_warning;
+      }
     }
   }
 }
@@ -349,6 +378,7 @@ void expect_topology(const std::string& file, std::vector<std::size_t> betti) {
   EXPECT_TRUE(o.topology.is_manifold) << o.topology.manifold_problem;
   EXPECT_EQ(o.topology.betti, betti) << file;
   EXPECT_FALSE(o.diagnostics.frames_inconsistent) << o.diagnostics.warning;
+  EXPECT_TRUE(o.diagnostics.dimension_warning.empty()) << o.diagnostics.dimension_warning;
   EXPECT_TRUE(o.topology.boundary_cells.empty() || o.topology.boundary_cells[0] == 0);
 }
 

@@ -40,8 +40,9 @@ nlohmann::json point_cloud_json(const PreparedPointCloud& cloud, const SampleOra
                       {"compared_edges", g.compared_edges},
                       {"frustrated_edges", g.frustrated_edges},
                       {"frames_consistent", !g.frames_inconsistent},
+                      {"apparent_dimension", g.apparent_dimension},
                       {"setup_seconds", cloud.seconds}};
-  if (const std::string w = cloud.frames_warning(); !w.empty()) j["warning"] = w;
+  if (const std::vector<std::string> w = cloud.warnings(); !w.empty()) j["warnings"] = w;
   j["oracle"] = cloud.oracle_name();
   if (counts.local_pca_defects) j["local_pca_defects"] = *counts.local_pca_defects;
   if (counts.winding_odd_tetrahedra) {

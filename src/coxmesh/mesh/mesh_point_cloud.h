@@ -56,11 +56,14 @@ struct PreparedPointCloud {
   std::string oracle_reason() const {
     return oracle_chosen ? "chosen because the normal frames look non-orientable" : "requested";
   }
-  /// The frames' warning when it applies to the result (the winding oracle meshes what it is
-  /// about), else empty.
-  std::string frames_warning() const {
-    return problem.diagnostics.frames_inconsistent && oracle != SampleOracle::winding ? problem.diagnostics.warning
-                                                                                      : std::string();
+  /// What the samples' diagnostics say against the result, a line each: the frames' warning (not
+  /// with the winding oracle, which meshes what it is about) and the dimension's.
+  std::vector<std::string> warnings() const {
+    const PointCloudDiagnostics& g = problem.diagnostics;
+    std::vector<std::string> out;
+    if (g.frames_inconsistent && oracle != SampleOracle::winding) out.push_back(g.warning);
+    if (!g.dimension_warning.empty()) out.push_back(g.dimension_warning);
+    return out;
   }
 };
 

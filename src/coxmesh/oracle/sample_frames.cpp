@@ -97,6 +97,7 @@ SampleFrames estimate_frames(const SampleTree& tree, int m, const FrameOptions& 
   out.normals.resize(n * k * d);
   out.flatness.resize(n);
   out.thickness.resize(n);
+  out.spread_dimension.resize(n);
   out.within_radius.resize(n);
 
   // Neighbourhoods and local PCA, in blocks of samples on the workers: each sample's results go
@@ -130,6 +131,9 @@ SampleFrames estimate_frames(const SampleTree& tree, int m, const FrameOptions& 
       }
       out.flatness[i] = normal_part / std::max(eig.eigenvalues().sum(), 1e-300);
       out.thickness[i] = std::sqrt(normal_part / count);
+      int spread = 0;
+      for (int j = 0; j < d; ++j) spread += eig.eigenvalues()[j] >= kSpreadFraction * eig.eigenvalues()[d - 1];
+      out.spread_dimension[i] = static_cast<std::uint8_t>(spread);
       for (int t = 0; t < d; ++t) out.centers[i * d + t] = mean[t];
       // The graph joins the nearest graph_neighbours whatever the radius: joined only within it,
       // sparse stretches of a curve fell apart locally and the frames met again the long way round.

@@ -21,6 +21,12 @@ struct FrameOptions {
   std::vector<double> reference_normals;
 };
 
+/// A direction counts in spread_dimension when the neighbourhood's variance along it is at least
+/// this fraction of the largest. Samples of a disc of radius r give about 1 for its two directions;
+/// of a curve, (κr)²/15 for its second (curvature κ; the torus of the tests, κr = 0.45: 0.014),
+/// plus 3σ²/r² from noise σ (a quarter of the radius, 1.2 spacings, gives 0.19).
+inline constexpr double kSpreadFraction = 0.05;
+
 /// The frames and the diagnostics of their synchronisation.
 struct SampleFrames {
   int d = 0, k = 0;
@@ -28,6 +34,10 @@ struct SampleFrames {
   std::vector<double> normals;    ///< n × k × d: the k orthonormal normals of sample i, one row each
   std::vector<double> flatness;   ///< n: (sum of the k normal eigenvalues) / (trace) of the local covariance
   std::vector<double> thickness;  ///< n: RMS distance of the neighbourhood from its tangent plane (noise and curvature)
+  /// n: the directions the neighbourhood spreads in (its covariance's eigenvalues of at least
+  /// kSpreadFraction × the largest): about m on an m-manifold, fewer where the samples are of a
+  /// lower-dimensional one (a curve given as a surface).
+  std::vector<std::uint8_t> spread_dimension;
   std::vector<std::uint16_t> within_radius;  ///< n: other samples within the radius (at most max_neighbours)
   std::vector<std::uint32_t> component;  ///< n: connected component of the neighbour graph (0, 1, … by first sample)
   std::uint32_t components = 0;

@@ -102,6 +102,15 @@ PointCloudProblem make_point_cloud_problem(std::vector<double> samples, int d, i
   std::vector<double> thickness = fr.thickness;
   std::nth_element(thickness.begin(), thickness.begin() + n / 2, thickness.end());
   diag.thickness = thickness[n / 2];
+  std::vector<std::uint8_t> spread = fr.spread_dimension;
+  std::nth_element(spread.begin(), spread.begin() + n / 2, spread.end());
+  diag.apparent_dimension = spread[n / 2];
+  if (diag.apparent_dimension < m)
+    diag.dimension_warning =
+        "the samples look " + std::to_string(diag.apparent_dimension) + "-dimensional, not " + std::to_string(m) +
+        "-dimensional: most of their neighbourhoods spread in only " + std::to_string(diag.apparent_dimension) +
+        " direction" + (diag.apparent_dimension == 1 ? "" : "s") + " (m = " + std::to_string(diag.apparent_dimension) +
+        "?); what is traced around them is a thin " + std::to_string(m) + "-manifold whose topology is not theirs";
   // Curves and surfaces: 2.5 spacings when the samples lie within half a spacing of their local
   // planes, 2 otherwise. Measured (docs/point_clouds.md): at 2.5 a noisy open disc (noise of 1 to
   // 1.6 spacings) got holes that 2 did not, and a thin knotted tube (thickness 1 spacing) broke at 2.75.

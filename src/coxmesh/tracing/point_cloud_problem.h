@@ -59,6 +59,12 @@ struct PointCloudDiagnostics {
   /// cannot be trusted. `warning` then says so in one line (empty otherwise).
   bool frames_inconsistent = false;
   std::string warning;
+  /// The median over the samples of the directions their neighbourhood spreads in
+  /// (SampleFrames::spread_dimension). Below m the samples are of a lower-dimensional manifold (a
+  /// curve given as a surface: what is traced around it is a thin m-manifold whose topology is not
+  /// the samples'); `dimension_warning` then says so in one line (empty otherwise).
+  int apparent_dimension = 0;
+  std::string dimension_warning;
 };
 
 /// Everything the tracer needs: F, the domain, seeds (samples spread over every component of the
