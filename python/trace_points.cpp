@@ -112,7 +112,8 @@ std::unique_ptr<Mesh> trace_points(const TraceArguments& a) {
     mesh->seeds = r.mesh.seeds;
     mesh->automatic_seeds = r.mesh.automatic_seeds;
     mesh->oracle_calls = r.mesh.oracle_calls;
-    mesh->warnings = std::move(r.mesh.warnings);
+    mesh->warnings = cloud.warnings();  // (the samples' first, as the command line prints them)
+    mesh->warnings.insert(mesh->warnings.end(), r.mesh.warnings.begin(), r.mesh.warnings.end());
     mesh->refinement = r.mesh.refinement;
     mesh->info.function_evaluations = r.mesh.function_evaluations;
     mesh->info.complete = r.mesh.status == TraceStatus::complete;

@@ -54,13 +54,26 @@ def test_rp2_gets_the_winding_oracle():
     assert not pc["frames_consistent"] and "warnings" not in pc
     assert mesh.betti == [1, 1, 1] and mesh.euler_characteristic == 1 and mesh.is_manifold
     # Asked for the per-vertex function instead, the frames' warning comes with it.
-    vertex = coxmesh.trace(points=rp2(), m=2, oracle="vertex").summary()["point_cloud"]
+    vertex_mesh = coxmesh.trace(points=rp2(), m=2, oracle="vertex")
+    vertex = vertex_mesh.summary()["point_cloud"]
     assert vertex["oracle"] == "vertex" and any("cannot be made consistent" in w for w in vertex["warnings"])
+    assert vertex_mesh.warnings[: len(vertex["warnings"])] == vertex["warnings"]
     # A bound besides the tube needs the per-vertex function: auto keeps to it, winding refuses it.
     boxed = coxmesh.trace(points=rp2(), m=2, box=[-1] * 4 + [1] * 4).summary()["point_cloud"]
     assert boxed["oracle"] == "vertex" and not boxed["frames_consistent"]
     with pytest.raises(coxmesh.InputError, match="oracle winding takes no domain or box"):
         coxmesh.trace(points=rp2(), m=2, oracle="winding", domain="x")
+
+
+def test_a_curve_given_as_a_surface_is_flagged():
+    t = np.random.default_rng(3).uniform(0, 2 * np.pi, 2000)
+    trefoil = np.stack([np.sin(t) + 2 * np.sin(2 * t), np.cos(t) - 2 * np.cos(2 * t), -np.sin(3 * t)], axis=1)
+    mesh = coxmesh.trace(points=trefoil)  # m = d - 1 = 2 by default
+    pc = mesh.summary()["point_cloud"]
+    assert pc["apparent_dimension"] == 1
+    assert any("look 1-dimensional, not 2-dimensional" in w for w in mesh.warnings)
+    curve = coxmesh.trace(points=trefoil, m=1)
+    assert curve.warnings == [] and curve.betti == [1, 1]
 
 
 @pytest.mark.parametrize("samples, options", [(sphere, []), (rp2, ["--m", "2"]),
