@@ -55,7 +55,7 @@ void run_coxmesh(const coxmesh::test::Samples& s, bool winding, double* spacing)
   const double c0 = cpu_seconds();
   PointCloudProblem p = make_point_cloud_problem(s.points, s.d, s.m);  // one thread (the default)
   const double setup = cpu_seconds() - c0;
-  const Triangulation t = Triangulation::coxeter(s.d).with_longest_edge(p.edge_length);
+  const Triangulation t = Triangulation::coxeter(s.d).with_longest_edge(p.edge_length).with_offset(p.centre());
   TopologyReport topo;
   std::string oracle = "vertex";
   if (winding || wants_winding_oracle(p.diagnostics)) {

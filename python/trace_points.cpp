@@ -103,7 +103,8 @@ std::unique_ptr<Mesh> trace_points(const TraceArguments& a) {
     const int d = cloud.problem.diagnostics.ambient_dimension;
     const Triangulation t = [&] {
       py::gil_scoped_acquire gil;  // (reads the Python arguments)
-      return ambient_triangulation(a, d, cloud.problem.edge_length);
+      const Triangulation given = ambient_triangulation(a, d, cloud.problem.edge_length);
+      return a.offset.is_none() ? given.with_offset(cloud.problem.centre()) : given;
     }();
     PointCloudMeshReport r = mesh_point_cloud(t, cloud, mo, make_domains);
     mesh->point_cloud = point_cloud_json(cloud, r.counts);

@@ -203,7 +203,8 @@ void run(TraceCliOptions o) {
   }
   TriangulationOptions tri = o.tri;
   if (!tri.scale && !tri.edge_length && tri.matrix_file.empty()) tri.edge_length = default_edge;
-  const Triangulation t = tri.build(d);
+  const Triangulation t =
+      cloud && tri.offset.empty() ? tri.build(d).with_offset(cloud->problem.centre()) : tri.build(d);
 
   for (const std::string& s : o.seeds) {
     std::vector<double> x = parse_point(s, "--seed");

@@ -20,7 +20,8 @@ void TriangulationOptions::add_to(CLI::App& app) {
   auto* s = app.add_option("--scale", scale, "multiply the linear part by S (larger S, larger simplices)");
   auto* h = app.add_option("--edge-length", edge_length, "scale so that the longest edge of every d-simplex is H");
   s->excludes(h);
-  app.add_option("--offset", offset, "translation b1,...,bd of the triangulation");
+  app.add_option("--offset", offset,
+                 "translation b1,...,bd of the triangulation (default 0; --points: the centre of the samples)");
   app.add_option("--rotate", rotation_seed, "apply a random rotation drawn from this seed (deterministic)")
       ->check(unsigned_integer());
 }

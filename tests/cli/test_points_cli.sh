@@ -16,6 +16,9 @@ check "points sphere betti" "1" "$(grep -c '"betti":\[1,0,1\]' <<<"$json")"
 check "points sphere manifold" "1" "$(grep -c '"is_manifold":true' <<<"$json")"
 check "points sphere frames" "1" "$(grep -c '"frames_consistent":true' <<<"$json")"
 check "points sphere samples" "1" "$(grep -c '"samples":2000' <<<"$json")"
+# Far from the origin (a scan in geographic coordinates): the lattice is centred on the samples.
+awk '{ printf "%.17g %.17g %.17g\n", $1 + 3e8, $2 - 5e8, $3 + 1e3 }' sphere.xyz > far.xyz
+check "points far from the origin" "1" "$("$bin" trace --points far.xyz --no-output | grep -c 'Betti numbers (Z/2) 1 0 1')"
 out=$("$bin" trace --points sphere.xyz)  # m defaults to d - 1; writes sphere.vtu
 check "points default m" "1" "$(grep -c 'Betti numbers (Z/2) 1 0 1' <<<"$out")"
 check "points report spacing" "1" "$(grep -c 'sample spacing' <<<"$out")"

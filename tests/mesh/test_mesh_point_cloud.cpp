@@ -23,7 +23,9 @@ PreparedPointCloud prepared(const std::string& name, std::size_t n, SampleOracle
 }
 
 Triangulation triangulation(const PreparedPointCloud& pc) {
-  return Triangulation::coxeter(pc.problem.diagnostics.ambient_dimension).with_longest_edge(pc.problem.edge_length);
+  return Triangulation::coxeter(pc.problem.diagnostics.ambient_dimension)
+      .with_longest_edge(pc.problem.edge_length)
+      .with_offset(pc.problem.centre());
 }
 
 }  // namespace

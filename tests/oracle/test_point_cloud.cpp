@@ -51,7 +51,7 @@ struct Outcome {
 
 Outcome mesh(std::vector<double> points, int d, int m, const PointCloudOptions& options = {}, int threads = 1) {
   PointCloudProblem p = make_point_cloud_problem(std::move(points), d, m, options);
-  const Triangulation t = Triangulation::coxeter(d).with_longest_edge(p.edge_length);
+  const Triangulation t = Triangulation::coxeter(d).with_longest_edge(p.edge_length).with_offset(p.centre());
   TraceOptions to;
   to.skip_unusable_seeds = true;
   to.threads = threads;
@@ -398,7 +398,7 @@ TEST(RealSamples, NoisySphere) { expect_topology("points_3/sphere_20k.xyz", {1, 
 TEST(LocalPca, DefectsAgainstPerVertexFunction) {
   const test::Samples s = test::sample_manifold("torus", 2000);
   const PointCloudProblem p = make_point_cloud_problem(s.points, s.d, s.m);
-  const Triangulation t = Triangulation::coxeter(s.d).with_longest_edge(p.edge_length);
+  const Triangulation t = Triangulation::coxeter(s.d).with_longest_edge(p.edge_length).with_offset(p.centre());
 
   const LocalPcaResult a = mesh_local_pca(t, p), b = mesh_local_pca(t, p);
   EXPECT_EQ(a.status, TraceStatus::complete);

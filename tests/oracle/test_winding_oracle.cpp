@@ -29,7 +29,7 @@ Outcome mesh(const test::Samples& s, int threads = 1) {
   PointCloudOptions po;
   po.threads = threads;
   PointCloudProblem p = make_point_cloud_problem(s.points, s.d, s.m, po);
-  const Triangulation t = Triangulation::coxeter(s.d).with_longest_edge(p.edge_length);
+  const Triangulation t = Triangulation::coxeter(s.d).with_longest_edge(p.edge_length).with_offset(p.centre());
   TraceOptions to;
   to.threads = threads;
   return {p.diagnostics, mesh_normal_winding(t, p, to)};
@@ -97,7 +97,7 @@ TEST(NonOrientable, EvenWhereCertain) {
     for (std::uint64_t seed = 1; seed <= 3; ++seed) {
       const test::Samples s = test::sample_manifold(name, n, noise, seed);
       PointCloudProblem p = make_point_cloud_problem(s.points, s.d, s.m);
-      const Triangulation t = Triangulation::coxeter(s.d).with_longest_edge(p.edge_length);
+      const Triangulation t = Triangulation::coxeter(s.d).with_longest_edge(p.edge_length).with_offset(p.centre());
       const double w = p.diagnostics.blend_width;
       NormalWindingOracle walk(t, p.model, w, p.domain);
       TraceOptions to;
@@ -116,7 +116,7 @@ TEST(NonOrientable, EvenWhereCertain) {
 TEST(NonOrientable, OnlyCodimensionTwo) {
   const test::Samples s = test::sample_manifold("sphere", 500);
   PointCloudProblem p = make_point_cloud_problem(s.points, s.d, s.m);
-  const Triangulation t = Triangulation::coxeter(s.d).with_longest_edge(p.edge_length);
+  const Triangulation t = Triangulation::coxeter(s.d).with_longest_edge(p.edge_length).with_offset(p.centre());
   EXPECT_THROW(mesh_normal_winding(t, p), InputError);
   EXPECT_THROW(NormalWindingOracle(t, p.model, 0.1), InputError);
   EXPECT_FALSE(wants_winding_oracle(p.diagnostics));

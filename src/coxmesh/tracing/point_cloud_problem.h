@@ -5,6 +5,7 @@
 // and noise. This file chooses the defaults (scale from the sample spacing) and the seeds.
 #pragma once
 
+#include <Eigen/Core>
 #include <memory>
 #include <string>
 #include <vector>
@@ -77,13 +78,21 @@ struct PointCloudProblem {
   Box box;
   double edge_length = 0;
   PointCloudDiagnostics diagnostics;
+
+  /// The centre of the box: where the front ends put the lattice's origin unless told otherwise,
+  /// so that samples far from 0 (a scan in geographic coordinates) keep small lattice coordinates.
+  Eigen::VectorXd centre() const {
+    Eigen::VectorXd c(static_cast<Eigen::Index>(box.lo.size()));
+    for (Eigen::Index i = 0; i < c.size(); ++i) c[i] = 0.5 * (box.lo[i] + box.hi[i]);
+    return c;
+  }
 };
 
 /// Builds the point-cloud problem for samples of an m-manifold in R^d (n × d row-major, distinct
 /// points, n ≥ m + 2). Throws InputError on bad sizes or parameters.
 ///
 ///   PointCloudProblem p = make_point_cloud_problem(points, 3, 2);
-///   Triangulation T = Triangulation::coxeter(3).with_longest_edge(p.edge_length);
+///   Triangulation T = Triangulation::coxeter(3).with_longest_edge(p.edge_length).with_offset(p.centre());
 ///   ImplicitOracle oracle(T, p.function, p.domain);
 ///   TraceResult r = trace_manifold(T, oracle, p.seeds, {.skip_unusable_seeds = true});
 PointCloudProblem make_point_cloud_problem(std::vector<double> samples, int d, int m,
