@@ -90,6 +90,8 @@ fails_with "points no normals" "has no normals" "$bin" trace --points sphere.xyz
 fails_with "points wrong dim" "expected R^4" "$bin" trace --points sphere.xyz --dim 4 --no-output
 head -3 sphere.xyz > three.xyz
 fails_with "points too few" "too few for a 2-manifold" "$bin" trace --points three.xyz --no-output
+for i in 1 2 3 4 5 6; do echo "1 2 3"; done > same.xyz
+fails_with "points all the same" "6 samples are only 1 distinct point: too few" "$bin" trace --points same.xyz --no-output
 printf 'x,y,z\n1,2,3\n4,5\n' > ragged.csv
 fails_with "points ragged csv" "line 3 has 2 numbers, line 2 has 3" "$bin" trace --points ragged.csv --no-output
 err=$("$bin" trace --points sphere.xyz --function x --no-output 2>&1) && status=0 || status=$?

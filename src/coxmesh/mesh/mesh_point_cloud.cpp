@@ -55,7 +55,12 @@ PreparedPointCloud prepare_samples(std::vector<double> samples, int d, SampleSou
   const auto t0 = Clock::now();
   PreparedPointCloud pc;
   pc.source = std::move(source);
-  pc.problem = make_point_cloud_problem(std::move(samples), d, options.m.value_or(d - 1), options.preparation);
+  const int m = options.m.value_or(d - 1);
+  if (pc.source.duplicates > 0 && d > 0 && samples.size() / d < static_cast<std::size_t>(m) + 2)
+    throw InputError(std::to_string(pc.source.read) + " samples are only " + std::to_string(samples.size() / d) +
+                     (samples.size() / d == 1 ? " distinct point" : " distinct points") + ": too few for a " +
+                     std::to_string(m) + "-manifold (at least m + 2 = " + std::to_string(m + 2) + ")");
+  pc.problem = make_point_cloud_problem(std::move(samples), d, m, options.preparation);
   if (options.oracle == SampleOracle::automatic) {
     pc.oracle = wants_winding_oracle(pc.problem.diagnostics) && !options.other_bounds ? SampleOracle::winding
                                                                                       : SampleOracle::vertex;
