@@ -91,6 +91,8 @@ fails_with "points wrong dim" "expected R^4" "$bin" trace --points sphere.xyz --
 head -3 sphere.xyz > three.xyz
 fails_with "points too few" "too few for a 2-manifold" "$bin" trace --points three.xyz --no-output
 for i in 1 2 3 4 5 6; do echo "1 2 3"; done > same.xyz
+printf '1\n2\n3\n4\n' > line1.xyz
+fails_with "points of R^1" "the samples have 1 coordinate each" "$bin" trace --points line1.xyz --no-output
 fails_with "points all the same" "6 samples are only 1 distinct point: too few" "$bin" trace --points same.xyz --no-output
 printf 'x,y,z\n1,2,3\n4,5\n' > ragged.csv
 fails_with "points ragged csv" "line 3 has 2 numbers, line 2 has 3" "$bin" trace --points ragged.csv --no-output
