@@ -53,7 +53,7 @@ PointCloudProblem make_point_cloud_problem(std::vector<double> samples, int d, i
                                            const PointCloudOptions& options) {
   check_dimension(d);
   if (d < 2)
-    throw InputError("the samples have 1 coordinate: a manifold sampled in R^1 has no dimension between 1 and d − 1");
+    throw InputError("the samples have 1 coordinate each: meshing needs points of R^2 or more (m from 1 to d − 1)");
   if (m < 1 || m >= d)
     throw InputError("the manifold dimension m must be between 1 and d − 1 = " + std::to_string(d - 1) +
                      " for samples of R^" + std::to_string(d));
