@@ -34,12 +34,16 @@ TraceResult run_tracer(const Triangulation& triangulation, std::vector<Intersect
   if (parallel) result.oracle_calls += parallel->oracle_calls();
   for (const IntersectionOracle* o : oracles) result.function_evaluations += o->function_evaluations();
   if (result.status == TraceStatus::max_simplices_reached)
-    result.message = "stopped at the limit of " + std::to_string(options.max_simplices) +
-                     " simplices; the manifold may be unbounded (give a domain or a box) or the scale too fine";
+    result.message = simplex_limit_message(options.max_simplices);
   return result;
 }
 
 }  // namespace
+
+std::string simplex_limit_message(std::size_t max_simplices) {
+  return "stopped at the limit of " + std::to_string(max_simplices) +
+         " simplices; the manifold may be unbounded (give a domain or a box) or the scale too fine";
+}
 
 TraceResult trace_manifold(const Triangulation& triangulation, IntersectionOracle& oracle,
                            const std::vector<std::vector<double>>& seeds, const TraceOptions& options) {

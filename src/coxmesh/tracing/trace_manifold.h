@@ -48,6 +48,9 @@ struct TraceResult {
   int manifold_dimension() const { return ambient_dimension - codimension; }
 };
 
+/// TraceResult::message of a walk stopped at the limit of max_simplices.
+std::string simplex_limit_message(std::size_t max_simplices);
+
 /// Traces every component of M̂ that passes near a seed: locates each seed, finds the k-simplices
 /// meeting M̂ among the faces of the d-simplices around it (widening up to seed_search_rings rings
 /// of neighbours), then walks breadth-first from k-simplex to k-simplex through their common

@@ -381,9 +381,7 @@ auto walk_distributed(const Triangulation& triangulation, IntersectionOracle& or
     walk.walk();
   }
   auto result = finish(walk);
-  if (result.status == TraceStatus::max_simplices_reached)
-    result.message = "stopped at the limit of " + std::to_string(agreed.max_simplices) +
-                     " simplices; the manifold may be unbounded (give a domain or a box) or the scale too fine";
+  if (result.status == TraceStatus::max_simplices_reached) result.message = simplex_limit_message(agreed.max_simplices);
   return result;
 }
 
