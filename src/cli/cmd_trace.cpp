@@ -218,6 +218,7 @@ void run(TraceCliOptions o) {
   DistributedTraceStats distributed;
   WriteOptions piece_options;   // (of .pvtu pieces)
   PartCounts pieces_written{};  // (summed over them: points, cells, skipped cells)
+  DistributedTopologyStats topology_stats;
   if (comm) {
     if (cloud) throw InputError("point clouds are not traced by several processes yet: run without mpirun");
     if (problem.domains.size() + (problem.domain ? 1 : 0) >= 2)
@@ -241,7 +242,7 @@ void run(TraceCliOptions o) {
                                                          part.interior_sizes[0], piece_options);
             return {n.points, n.cells, n.skipped};
           },
-          &distributed, &pieces_written);
+          &distributed, &pieces_written, &topology_stats);
     else if (pieces)
       mo.complex_tracer = distributed_complex_tracer(
           *comm,
@@ -249,7 +250,7 @@ void run(TraceCliOptions o) {
             write_native_piece_file(output, comm->rank(), part);
             return PartCounts{};
           },
-          &distributed);
+          &distributed, nullptr, &topology_stats);
     else
       mo.tracer = distributed_tracer(*comm, &distributed);
   }
@@ -287,7 +288,7 @@ void run(TraceCliOptions o) {
       write_pvtu_manifest_file(output, comm->size(), d, wo);
       written = {pieces_written[0], pieces_written[1], pieces_written[2]};
     } else {
-      written = mo.complex_tracer ? write_native_manifest_file(output, comm->size(), r.cells, wo.native)
+      written = mo.complex_tracer ? write_native_manifest_file(output, comm->size(), r.topology, wo.native)
                                   : write_mesh(output, format, r.cells, wo);
     }
     write_s = seconds_since(t3);
@@ -333,7 +334,7 @@ void run(TraceCliOptions o) {
     print_trace_json(out, summary);
   else if (!o.quiet)
     print_trace_lines(out, summary);
-  if (comm && !o.quiet) print_distributed_stats(std::cerr, distributed, report.cells.interior[0].size());
+  if (comm && !o.quiet) print_distributed_stats(std::cerr, distributed, report.topology.cells.at(0), topology_stats);
 }
 
 }  // namespace
