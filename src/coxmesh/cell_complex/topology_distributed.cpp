@@ -378,20 +378,13 @@ std::vector<std::size_t> finish_betti(const Bytes& records, const Layout& layout
   words = {};
   cells = {};
   std::vector<std::uint8_t> keep(dim.size(), 1);
-  std::uint64_t extra_vertices = 0;
   {
     PairReducer reducer(offsets, facets, {});
     reducer.reduce();
-    // H_0 is 0 here (a vertex of every component is gone): removing one more vertex adds one to
-    // β_1 and changes nothing else, and lets the coreductions start again where they stalled.
-    for (std::uint32_t v = 0; v < dim.size() && dim[v] == 0; ++v)
-      if (!reducer.removed(v)) reducer.remove_vertex(v), reducer.reduce(), ++extra_vertices;
     for (std::uint32_t a = 0; a < keep.size(); ++a) keep[a] = !reducer.removed(a);
     if (stats) stats->cells_left = reducer.remaining();
   }
   std::vector<std::size_t> betti = betti_by_reduction(offsets, facets, dim, layout.m, keep);
-  COXMESH_ASSERT(betti[0] == 0 && (layout.m == 0 ? extra_vertices == 0 : betti[1] >= extra_vertices));
-  if (layout.m > 0) betti[1] -= extra_vertices;
   return betti;
 }
 
