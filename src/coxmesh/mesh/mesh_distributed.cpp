@@ -78,17 +78,7 @@ ComplexTracer distributed_complex_tracer(Communicator& comm, PartWriter write_pa
     traced.function_evaluations = part.function_evaluations;
     const bool empty = part.size == 0;  // (mesh_manifold says why)
     CellComplexPart cells = build_cell_complex_distributed(std::move(part), comm);
-    std::exception_ptr failure;
-    PartCounts counts{};
-    try {
-      if (!empty && write_part) counts = write_part(cells);
-    } catch (...) {
-      failure = std::current_exception();
-    }
-    agree_on_failure(comm, failure);
-    comm.sum(counts.data(), static_cast<int>(counts.size()));
-    if (written) *written = counts;
-    TracedComplex out;
+    TracedComplex out;  // (the verdicts first: the writer may release the vertex rows)
     if (!empty) {
       const ImplicitFunction* f_only[] = {m.f.get()};
       const double h = t.longest_edge();
@@ -100,6 +90,17 @@ ComplexTracer distributed_complex_tracer(Communicator& comm, PartWriter write_pa
                                                            cells.boundary_ids[0], cells.boundary_sizes[0], h, comm);
       }
     }
+    std::exception_ptr failure;
+    PartCounts counts{};
+    try {
+      if (!empty && write_part) counts = write_part(cells);
+    } catch (...) {
+      failure = std::current_exception();
+    }
+    agree_on_failure(comm, failure);
+    comm.sum(counts.data(), static_cast<int>(counts.size()));
+    if (written) *written = counts;
+    release_all_but_incidences(cells);
     out.cells.ambient_dimension = cells.cells.ambient_dimension;
     out.cells.manifold_dimension = cells.cells.manifold_dimension;
     out.cells.interior.resize(cells.cells.interior.size());

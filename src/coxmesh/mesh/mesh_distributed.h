@@ -28,7 +28,8 @@ Tracer distributed_tracer(Communicator& comm, DistributedTraceStats* stats = nul
 
 /// Counts of what a rank wrote (e.g. points, cells and skipped cells of a file), summed over the ranks.
 using PartCounts = std::array<std::uint64_t, 3>;
-/// Writes one rank's part of the cell complex (e.g. its piece of the output file); may be collective.
+/// Writes one rank's part of the cell complex (e.g. its piece of the output file); may be collective, and may
+/// release_all_but_incidences(part) once it has read the rest.
 using PartWriter = std::function<PartCounts(CellComplexPart&)>;
 
 /// A MeshOptions::complex_tracer: the walk and the cell complex split over `comm`, each rank building
