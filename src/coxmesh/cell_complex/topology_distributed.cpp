@@ -455,7 +455,9 @@ TopologyReport analyze_topology_distributed(CellComplexPart&& part, Communicator
       for (std::uint32_t g : ranges.of(i))
         if (layout.local(g) == kRemote) wanted.push_back(g);
     sort_unique(wanted);
-    if (stats) stats->interface_cells = wanted.size();
+    std::uint64_t fetched = wanted.size();
+    comm.sum(&fetched, 1);
+    if (stats) stats->interface_cells = fetched;
     const std::vector<std::vector<std::uint32_t>> asked = by_owner(wanted, layout);
     wanted = {};
     const Bytes answers = ask(comm, layout, asked, [&](std::uint32_t i, Bytes& out) {

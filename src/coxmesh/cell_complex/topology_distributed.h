@@ -16,7 +16,7 @@ struct DistributedTopologyStats {
   std::uint64_t cells = 0;            ///< in the whole complex
   std::uint64_t cells_to_rank0 = 0;   ///< left by the reductions of the ranks, finished on rank 0
   std::uint64_t cells_left = 0;       ///< left by rank 0's reductions, for the matrix reduction
-  std::uint64_t interface_cells = 0;  ///< facets fetched from another rank (the closedness check)
+  std::uint64_t interface_cells = 0;  ///< facets fetched from another rank (the closedness check), over all ranks
 };
 
 /// analyze_topology of the complex whose parts the ranks hold (every rank calls it with its part,
