@@ -14,7 +14,10 @@
 #include <phat/representations/full_pivot_column.h>
 
 #include <algorithm>
+#include <cstring>
+#include <exception>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <unordered_map>
 
