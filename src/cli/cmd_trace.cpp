@@ -219,6 +219,7 @@ void run(TraceCliOptions o) {
   DistributedTraceStats distributed;
   WriteOptions piece_options;   // (of .pvtu pieces)
   PartCounts pieces_written{};  // (summed over them: points, cells, skipped cells)
+  DistributedTopologyStats topology_stats;
   if (comm) {
     if (cloud) throw InputError("point clouds are not traced by several processes yet: run without mpirun");
     if (problem.domains.size() + (problem.domain ? 1 : 0) >= 2)
@@ -238,11 +239,13 @@ void run(TraceCliOptions o) {
       mo.complex_tracer = distributed_complex_tracer(
           *comm,
           [&](CellComplexPart& part) -> PartCounts {
-            const WrittenCounts n = write_vtu_piece_file(output, comm->rank(), closure_for_writing(part, *comm),
-                                                         part.interior_sizes[0], piece_options);
+            const CellClosure closure = closure_for_writing(part, *comm);
+            release_all_but_incidences(part);  // (before the piece's grid: the topology needs no more)
+            const WrittenCounts n =
+                write_vtu_piece_file(output, comm->rank(), closure, part.interior_sizes[0], piece_options);
             return {n.points, n.cells, n.skipped};
           },
-          &distributed, &pieces_written);
+          &distributed, &pieces_written, &topology_stats);
     else if (pieces)
       mo.complex_tracer = distributed_complex_tracer(
           *comm,
@@ -250,7 +253,7 @@ void run(TraceCliOptions o) {
             write_native_piece_file(output, comm->rank(), part);
             return PartCounts{};
           },
-          &distributed);
+          &distributed, nullptr, &topology_stats);
     else
       mo.tracer = distributed_tracer(*comm, &distributed);
   }
@@ -288,7 +291,7 @@ void run(TraceCliOptions o) {
       write_pvtu_manifest_file(output, comm->size(), d, wo);
       written = {pieces_written[0], pieces_written[1], pieces_written[2]};
     } else {
-      written = mo.complex_tracer ? write_native_manifest_file(output, comm->size(), r.cells, wo.native)
+      written = mo.complex_tracer ? write_native_manifest_file(output, comm->size(), r.topology, wo.native)
                                   : write_mesh(output, format, r.cells, wo);
     }
     write_s = seconds_since(t3);
@@ -334,7 +337,7 @@ void run(TraceCliOptions o) {
     print_trace_json(out, summary);
   else if (!o.quiet)
     print_trace_lines(out, summary);
-  if (comm && !o.quiet) print_distributed_stats(std::cerr, distributed, report.cells.interior[0].size());
+  if (comm && !o.quiet) print_distributed_stats(std::cerr, distributed, report.topology.cells.at(0), topology_stats);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <functional>
 #include <iosfwd>
 
+#include "coxmesh/cell_complex/topology_distributed.h"
 #include "coxmesh/tracing/trace_distributed.h"
 #include "coxmesh/util/communicator.h"
 
@@ -27,6 +28,7 @@ class MpiSession {
 int run_distributed_guarded(Communicator& comm, const std::function<void()>& body);
 
 /// One line on what the ranks exchanged, for the user who wonders what several processes cost.
-void print_distributed_stats(std::ostream& out, const DistributedTraceStats& stats, std::size_t traced);
+void print_distributed_stats(std::ostream& out, const DistributedTraceStats& stats, std::size_t traced,
+                             const DistributedTopologyStats& topology);
 
 }  // namespace coxmesh::cli

@@ -2,7 +2,8 @@
 # End-to-end tests of `mpirun -n P coxmesh trace` ($COXMESH = the binary, $MPIEXEC = mpirun): for
 # P = 1, 2, 3 on this machine, the file and the JSON summary (timings, memory and the file's name
 # aside) are byte for byte those of one process with one thread, F evaluations included (a .cxm
-# written in pieces, merged by `coxmesh convert`); a failure
+# written in pieces, merged by `coxmesh convert`; the topology computed without gathering the
+# complex); a failure
 # of F on one rank stops every rank with one error line and a non-zero status.
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
@@ -36,6 +37,10 @@ same_as_one_process() {  # same_as_one_process NAME TRACE-ARGS...
     fi
     check "$name, $n processes: the same file" "same" "$(cmp -s "$name.cxm" "$merged" && echo same || echo different)"
     check "$name, $n processes: the same summary" "$(stable "$name.json")" "$(stable "$name.$n.json")"
+    if [[ $n -gt 1 ]]; then  # (the topology computed by the ranks: rank 0 gets part of the cells)
+      check "$name, $n processes: rank 0 gets part of the cells" yes "$(sed -n 's/.*topology: \([0-9]*\) of \([0-9]*\) cells.*/\1 \2/p' "$name.$n.err" |
+        awk '{ print ($1 < $2 ? "yes" : "no") }')"
+    fi
   done
   # F once per lattice vertex in the whole job: the count is that of one process.
   check "$name: F evaluations" "$(grep function_evaluations "$name.json")" "$(grep function_evaluations "$name.3.json")"

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "coxmesh/cell_complex/cell_complex_distributed.h"
+#include "coxmesh/cell_complex/topology_distributed.h"
 #include "coxmesh/io/native_format.h"
 #include "coxmesh/oracle/implicit_oracle.h"
 #include "coxmesh/tracing/trace_distributed.h"
@@ -298,6 +299,72 @@ TEST(DistributedCellComplex, EveryLevelAsOneProcessNumbersIt) {
       write_native(on_rank_0, gathered);
       EXPECT_TRUE(assembled.str() == one_file.str()) << c.name << ", " << ranks << " ranks";
       EXPECT_TRUE(on_rank_0.str() == one_file.str()) << c.name << ", " << ranks << " ranks, gathered";
+    }
+  }
+}
+
+// The topology computed by the ranks together, without gathering the complex, is that of one
+// process: counts, Euler characteristic, closedness, the manifold check and its message, Betti
+// numbers; on every rank.
+TEST(DistributedTopology, AsOneProcess) {
+  const std::vector<Case> cases = {
+      {"circle", sphere(1, 2, 1.0), nullptr, Triangulation::coxeter(2).with_longest_edge(0.02), {}},
+      {"S2 in R3", sphere(2, 3, 1.0), nullptr, Triangulation::coxeter(3).with_longest_edge(0.15), {}},
+      {"torus", torus(1.0, 0.5), nullptr, Triangulation::coxeter(3).with_longest_edge(0.1), {}},
+      {"S3 in R4", sphere(3, 4, 1.0), nullptr, Triangulation::coxeter(4).with_longest_edge(0.5), {}},
+      // (RP³: Z/2 Betti numbers 1 1 1 1, where the rational ones are 1 0 0 1)
+      {"SO(3)", rotation_group_so3(), nullptr, Triangulation::coxeter(9).with_longest_edge(1.8), {}},
+      {"flat torus cut: a boundary",
+       product(sphere(1, 2, 1.0), sphere(1, 2, 1.0)),
+       half_space_domain({1, 1, 0, 0}, 0.5),
+       Triangulation::coxeter(4).with_longest_edge(0.3),
+       {{-1, 0, 1, 0}}},
+      {"two spheres",
+       sphere(2, 3, 1.0),
+       nullptr,
+       Triangulation::coxeter(3).with_longest_edge(0.2),
+       {{1, 0, 0}, {0, 0, 1}}},
+      {"limit: open", torus(1.0, 0.5), nullptr, Triangulation::coxeter(3).with_longest_edge(0.08), {}, 2000},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const std::vector<std::vector<double>> seeds =
+        c.seeds.empty() ? std::vector<std::vector<double>>{c.f->seed()} : c.seeds;
+    ImplicitOracle oracle(c.t, c.f, c.domain);
+    TraceOptions options;
+    options.max_simplices = c.max_simplices;
+    const TopologyReport one = analyze_topology(build_cell_complex(trace_manifold(c.t, oracle, seeds, options)));
+    EXPECT_EQ(one.closed, c.max_simplices == TraceOptions{}.max_simplices);
+    if (c.name == "SO(3)") {
+      EXPECT_EQ(one.betti, (std::vector<std::size_t>{1, 1, 1, 1}));
+    }
+    for (int ranks : {1, 2, 3, 4}) {
+      SCOPED_TRACE(std::to_string(ranks) + " ranks");
+      std::vector<CellComplexPart> parts =
+          cell_parts_on_ranks(ranks, c.t, c.f, c.domain, seeds, options, nullptr, nullptr);
+      Mailboxes mailboxes(ranks);
+      std::vector<TopologyReport> reports(ranks);
+      std::vector<DistributedTopologyStats> stats(ranks);
+      std::vector<std::thread> threads;
+      for (int r = 0; r < ranks; ++r)
+        threads.emplace_back([&, r] {
+          ThreadCommunicator comm(mailboxes, r);
+          reports[r] = analyze_topology_distributed(std::move(parts[r]), comm, &stats[r]);
+        });
+      for (auto& thread : threads) thread.join();
+      for (const TopologyReport& split : reports) {
+        EXPECT_EQ(split.cells, one.cells);
+        EXPECT_EQ(split.boundary_cells, one.boundary_cells);
+        EXPECT_EQ(split.euler_characteristic, one.euler_characteristic);
+        EXPECT_EQ(split.closed, one.closed);
+        EXPECT_EQ(split.is_manifold, one.is_manifold);
+        EXPECT_EQ(split.manifold_problem, one.manifold_problem);
+        EXPECT_EQ(split.betti, one.betti);
+      }
+      // Rank 0 finishes what the ranks left: a small part of the complex.
+      if (one.closed) {
+        EXPECT_LT(stats[0].cells_to_rank0, stats[0].cells / 2);
+      }
     }
   }
 }

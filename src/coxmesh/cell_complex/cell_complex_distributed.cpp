@@ -666,4 +666,11 @@ CellClosure closure_for_writing(CellComplexPart& part, Communicator& comm) {
   return out;
 }
 
+void release_all_but_incidences(CellComplexPart& part) {
+  for (auto* levels : {&part.cells.interior, &part.cells.boundary})
+    for (CellLevel& level : *levels) level.simplices = PackedKeyIndex{1};
+  part.cells.vertices = PointArray{};
+  part.cells.boundary_vertices = PointArray{};
+}
+
 }  // namespace coxmesh

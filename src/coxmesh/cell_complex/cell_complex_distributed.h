@@ -47,6 +47,10 @@ struct CellClosure {
 /// Collective. The levels of `part` are indexed again (for the look-ups of the other ranks).
 CellClosure closure_for_writing(CellComplexPart& part, Communicator& comm);
 
+/// Releases the keys of the part's cells and its vertex rows, keeping the incidences, the ids and
+/// the sizes: all that the topology reads (topology_distributed.h).
+void release_all_but_incidences(CellComplexPart& part);
+
 /// The whole complex on rank 0 (assembled from every rank's part), an empty one elsewhere. Collective.
 CellComplex gather_cell_complex(CellComplexPart&& part, Communicator& comm);
 

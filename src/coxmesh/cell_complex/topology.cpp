@@ -1,5 +1,6 @@
 #include "coxmesh/cell_complex/topology.h"
 
+#include <algorithm>
 #include <bit>
 
 #include "coxmesh/cell_complex/betti.h"
@@ -163,6 +164,21 @@ TopologyReport analyze_topology(const CellComplex& cc, bool compute_betti) {
   r.is_manifold = r.manifold_problem.empty();
   if (compute_betti && r.closed) r.betti = betti_numbers(cc, r.is_manifold);
   return r;
+}
+
+std::vector<StratumCount> stratum_counts(const TopologyReport& topo) {
+  std::vector<StratumCount> out;
+  const int m = static_cast<int>(topo.cells.size()) - 1;
+  const auto add = [&](std::uint64_t domains, int dimension, const std::vector<std::size_t>& cells) {
+    if (std::all_of(cells.begin(), cells.end(), [](std::size_t n) { return n == 0; })) return;
+    StratumCount& s = out.emplace_back();
+    s.domains = domains, s.dimension = dimension;
+    s.cells.assign(static_cast<std::size_t>(std::max(dimension, 0)) + 1, 0);
+    for (std::size_t j = 0; j < cells.size() && j < s.cells.size(); ++j) s.cells[j] = cells[j];
+  };
+  add(0, m, topo.cells);
+  add(1, m - 1, topo.boundary_cells);
+  return out;
 }
 
 }  // namespace coxmesh

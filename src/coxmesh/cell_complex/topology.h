@@ -26,4 +26,8 @@ struct TopologyReport {
 /// (m−1)-cells, and every cell of dimension < m lies in some cell of the next dimension.
 TopologyReport analyze_topology(const CellComplex& cc, bool compute_betti = true);
 
+/// stratum_counts (cell_complex.h) of a complex that is not stratified, from its report's counts:
+/// the interior, and the boundary when it has cells.
+std::vector<StratumCount> stratum_counts(const TopologyReport& topo);
+
 }  // namespace coxmesh

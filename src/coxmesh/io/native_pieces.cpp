@@ -155,13 +155,15 @@ void write_native_piece_file(const std::string& path, int rank, const CellComple
   write_file_atomically(native_piece_path(path, rank), [&](std::ostream& os) { write_native_piece(os, part); });
 }
 
-WrittenCounts write_native_manifest_file(const std::string& path, int pieces, const CellComplex& cc,
+WrittenCounts write_native_manifest_file(const std::string& path, int pieces, const TopologyReport& counts,
                                          const NativeInfo& info) {
   write_file_atomically(path, [&](std::ostream& os) { write_native_manifest(os, path, pieces, info); });
   std::size_t cells = 0;
-  for (const auto* levels : {&cc.interior, &cc.boundary})
-    for (const CellLevel& l : *levels) cells += l.size();
-  return {vertex_count(cc), cells, 0};
+  for (const auto* levels : {&counts.cells, &counts.boundary_cells})
+    for (const std::size_t n : *levels) cells += n;
+  const std::size_t points =
+      (counts.cells.empty() ? 0 : counts.cells[0]) + (counts.boundary_cells.empty() ? 0 : counts.boundary_cells[0]);
+  return {points, cells, 0};
 }
 
 bool read_native_manifest(std::istream& in, const std::string& name, NativeFile& out) {

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "coxmesh/cell_complex/cell_complex_distributed.h"
+#include "coxmesh/cell_complex/topology.h"
 #include "coxmesh/io/mesh_formats.h"
 #include "coxmesh/io/native_format.h"
 
@@ -34,8 +35,9 @@ void write_native_manifest(std::ostream& os, const std::string& path, int pieces
 /// Rank `rank`'s piece of `path`, written atomically (atomic_file.h).
 void write_native_piece_file(const std::string& path, int rank, const CellComplexPart& part);
 /// The manifest of `path` in `pieces` pieces, written atomically once the pieces are; returns the
-/// counts that write_mesh returns for the whole complex `cc`.
-WrittenCounts write_native_manifest_file(const std::string& path, int pieces, const CellComplex& cc,
+/// counts that write_mesh returns for the whole complex, whose cells `counts` counts (a topology
+/// report: the complex is not in one process).
+WrittenCounts write_native_manifest_file(const std::string& path, int pieces, const TopologyReport& counts,
                                          const NativeInfo& info);
 
 /// Whether the first line of `in` (rewound after) is a manifest; if so, the whole complex of its

@@ -6,9 +6,11 @@ nlohmann::json topology_json(const CellComplex& cc, const TopologyReport& topo) 
   nlohmann::json j;
   j["ambient_dimension"] = cc.ambient_dimension;
   j["manifold_dimension"] = cc.manifold_dimension;
-  const bool stratified = cc.stratified() && !topo.cells.empty();  // (vertex cells of all strata in interior[0])
-  j["traced_simplices"] = stratified ? topo.cells[0] : cc.interior.empty() ? 0 : cc.interior[0].size();
-  j["boundary_simplices"] = stratified            ? (topo.boundary_cells.empty() ? 0 : topo.boundary_cells[0])
+  // The counts of the report: a complex split between processes is not here (mesh_distributed.h).
+  // (a stratified complex has the vertex cells of all strata in interior[0])
+  const bool counted = !topo.cells.empty();
+  j["traced_simplices"] = counted ? topo.cells[0] : cc.interior.empty() ? 0 : cc.interior[0].size();
+  j["boundary_simplices"] = counted               ? (topo.boundary_cells.empty() ? 0 : topo.boundary_cells[0])
                             : cc.boundary.empty() ? 0
                                                   : cc.boundary[0].size();
   j["cells"] = topo.cells;
@@ -25,7 +27,7 @@ nlohmann::json topology_json(const CellComplex& cc, const TopologyReport& topo) 
   // there (bit i: domain i + 1), its dimension and cells; corners are its vertex cells of dimension 0.
   std::size_t corners = 0;
   j["strata"] = nlohmann::json::array();
-  for (const StratumCount& s : stratum_counts(cc)) {
+  for (const StratumCount& s : counted && !cc.stratified() ? stratum_counts(topo) : stratum_counts(cc)) {
     if (s.domains != 0 && s.dimension == 0) corners += s.cells[0];
     nlohmann::json domains = nlohmann::json::array();
     for (int i = 0; i < 64; ++i)

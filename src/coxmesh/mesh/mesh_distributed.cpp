@@ -1,6 +1,11 @@
 #include "coxmesh/mesh/mesh_distributed.h"
 
+#include <algorithm>
+#include <cmath>
+#include <span>
+
 #include "coxmesh/oracle/implicit_oracle.h"
+#include "coxmesh/oracle/regularity.h"
 
 namespace coxmesh {
 
@@ -25,6 +30,25 @@ struct RankOracle {
   VertexEvaluator evaluate;
 };
 
+// singular_on over the rows of one kind of vertex cell of the whole complex, each rank measuring the
+// samples among its rows: the same points, hence the same verdict.
+bool singular_on_parts(std::span<const ImplicitFunction* const> functions, const PointArray& rows,
+                       const std::vector<std::uint32_t>& ids, std::uint64_t n, double h, Communicator& comm) {
+  const std::size_t d = static_cast<std::size_t>(functions.front()->ambient_dimension());
+  const std::uint64_t tested = std::min<std::uint64_t>(n, kRegularitySamples);
+  std::uint64_t counts[2] = {0, 0};  // finite measures, singular ones
+  for (std::uint64_t s = 0; s < tested; ++s) {
+    const auto it = std::lower_bound(ids.begin(), ids.end(), static_cast<std::uint32_t>(s * n / tested));
+    if (it == ids.end() || *it != s * n / tested) continue;
+    const double r = regularity(functions, rows.data() + static_cast<std::size_t>(it - ids.begin()) * d, h);
+    if (std::isnan(r)) continue;
+    ++counts[0];
+    counts[1] += r < kRegularityThreshold;
+  }
+  comm.sum(counts, 2);
+  return counts[0] > 0 && 4 * counts[1] > counts[0];
+}
+
 }  // namespace
 
 Tracer distributed_tracer(Communicator& comm, DistributedTraceStats* stats) {
@@ -38,10 +62,10 @@ Tracer distributed_tracer(Communicator& comm, DistributedTraceStats* stats) {
 }
 
 ComplexTracer distributed_complex_tracer(Communicator& comm, PartWriter write_part, DistributedTraceStats* stats,
-                                         PartCounts* written) {
-  return [&comm, write_part, stats, written](const Triangulation& t, const ManifoldFunctions& m,
-                                             const std::vector<std::vector<double>>& seeds, const TraceOptions& options,
-                                             TraceResult& traced) {
+                                         PartCounts* written, DistributedTopologyStats* topology_stats) {
+  return [&comm, write_part, stats, written, topology_stats](const Triangulation& t, const ManifoldFunctions& m,
+                                                             const std::vector<std::vector<double>>& seeds,
+                                                             const TraceOptions& options, TraceResult& traced) {
     TracePart part = [&] {  // (the vertex values go before the complex is built)
       RankOracle r(t, m);
       return trace_part_distributed(t, r.oracle, *r.values, r.evaluate, seeds, options, comm, stats);
@@ -54,6 +78,18 @@ ComplexTracer distributed_complex_tracer(Communicator& comm, PartWriter write_pa
     traced.function_evaluations = part.function_evaluations;
     const bool empty = part.size == 0;  // (mesh_manifold says why)
     CellComplexPart cells = build_cell_complex_distributed(std::move(part), comm);
+    TracedComplex out;  // (the verdicts first: the writer may release the vertex rows)
+    if (!empty) {
+      const ImplicitFunction* f_only[] = {m.f.get()};
+      const double h = t.longest_edge();
+      out.singular_vertices =
+          singular_on_parts(f_only, cells.cells.vertices, cells.interior_ids[0], cells.interior_sizes[0], h, comm);
+      if (m.domain && !cells.boundary_sizes.empty()) {
+        const ImplicitFunction* f_and_domain[] = {m.f.get(), m.domain.get()};
+        out.singular_boundary_vertices = singular_on_parts(f_and_domain, cells.cells.boundary_vertices,
+                                                           cells.boundary_ids[0], cells.boundary_sizes[0], h, comm);
+      }
+    }
     std::exception_ptr failure;
     PartCounts counts{};
     try {
@@ -64,9 +100,14 @@ ComplexTracer distributed_complex_tracer(Communicator& comm, PartWriter write_pa
     agree_on_failure(comm, failure);
     comm.sum(counts.data(), static_cast<int>(counts.size()));
     if (written) *written = counts;
-    CellComplex whole = gather_cell_complex(std::move(cells), comm);
+    release_all_but_incidences(cells);
+    out.cells.ambient_dimension = cells.cells.ambient_dimension;
+    out.cells.manifold_dimension = cells.cells.manifold_dimension;
+    out.cells.interior.resize(cells.cells.interior.size());
+    out.cells.boundary.resize(cells.cells.boundary.size());
+    out.topology = analyze_topology_distributed(std::move(cells), comm, topology_stats);
     if (comm.rank() != 0) throw DistributedPartDone{};
-    return whole;
+    return out;
   };
 }
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "coxmesh/cell_complex/cell_complex_distributed.h"
+#include "coxmesh/cell_complex/topology_distributed.h"
 #include "coxmesh/mesh/mesh_manifold.h"
 #include "coxmesh/tracing/trace_distributed.h"
 #include "coxmesh/util/communicator.h"
@@ -27,15 +28,18 @@ Tracer distributed_tracer(Communicator& comm, DistributedTraceStats* stats = nul
 
 /// Counts of what a rank wrote (e.g. points, cells and skipped cells of a file), summed over the ranks.
 using PartCounts = std::array<std::uint64_t, 3>;
-/// Writes one rank's part of the cell complex (e.g. its piece of the output file); may be collective.
+/// Writes one rank's part of the cell complex (e.g. its piece of the output file); may be collective, and may
+/// release_all_but_incidences(part) once it has read the rest.
 using PartWriter = std::function<PartCounts(CellComplexPart&)>;
 
 /// A MeshOptions::complex_tracer: the walk and the cell complex split over `comm`, each rank building
 /// the cells it owns (cell_complex_distributed.h) and writing them with `write_part` (every rank
 /// agrees on whether all succeeded before going on; `written`, if given, gets the counts summed over
-/// the ranks); then rank 0 gathers the whole complex for the topology and the report, and the other
-/// ranks throw DistributedPartDone.
+/// the ranks); then the ranks compute the topology together (topology_distributed.h) and the
+/// regularity verdicts over the vertices, each over its own cells. Rank 0 gets them, with a complex
+/// that has the dimensions but no cells; the other ranks throw DistributedPartDone.
 ComplexTracer distributed_complex_tracer(Communicator& comm, PartWriter write_part,
-                                         DistributedTraceStats* stats = nullptr, PartCounts* written = nullptr);
+                                         DistributedTraceStats* stats = nullptr, PartCounts* written = nullptr,
+                                         DistributedTopologyStats* topology_stats = nullptr);
 
 }  // namespace coxmesh

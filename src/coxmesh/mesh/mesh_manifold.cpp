@@ -129,7 +129,7 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
   const auto shared = trace.threads > 1 ? ImplicitOracle::make_shared_values(t, f, domain) : nullptr;
   bool first_worker = true;
   TraceResult traced;
-  CellComplex built;  // (by complex_tracer)
+  TracedComplex built;  // (by complex_tracer)
   if (o.complex_tracer)
     built = o.complex_tracer(t, {f, domain}, seeds.seeds, trace, traced);
   else if (o.tracer)
@@ -149,7 +149,11 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
   report.trace_seconds = seconds_since(t0);
   const double h = t.longest_edge();
   const ImplicitFunction* f_only[] = {f.get()};
-  if (o.complex_tracer ? built.interior.empty() || built.interior[0].size() == 0 : traced.simplices.size() == 0) {
+  const std::size_t traced_count = !o.complex_tracer              ? traced.simplices.size()
+                                   : built.topology               ? built.topology->cells.at(0)
+                                   : built.cells.interior.empty() ? 0
+                                                                  : built.cells.interior[0].size();
+  if (traced_count == 0) {
     std::vector<double> points;
     for (const auto& x : seeds.seeds) points.insert(points.end(), x.begin(), x.end());
     if (o.check_regularity && singular_on(f_only, points, h))
@@ -170,15 +174,20 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
 
   if (o.on_phase) o.on_phase("building the cell complex");
   const auto t1 = Clock::now();
-  report.cells = o.complex_tracer ? std::move(built) : build_cell_complex(std::move(traced), trace.threads);
+  report.cells = o.complex_tracer ? std::move(built.cells) : build_cell_complex(std::move(traced), trace.threads);
   report.cell_complex_seconds = seconds_since(t1);
   // The exact rule meshes a perturbed level set where F = 0 is not a regular level: say so.
   const CellComplex& cc = report.cells;
-  if (o.check_regularity && singular_on(f_only, {cc.vertices.data(), cc.vertices.size()}, h))
+  // (a complex split between processes comes with the verdicts, its vertices being elsewhere)
+  if (o.check_regularity &&
+      (built.singular_vertices ? *built.singular_vertices
+                               : singular_on(f_only, {cc.vertices.data(), cc.vertices.size()}, h)))
     report.warnings.push_back(kSingularOnTracedSet);
   if (o.check_regularity && domain) {
     const ImplicitFunction* f_and_domain[] = {f.get(), domain.get()};
-    if (singular_on(f_and_domain, {cc.boundary_vertices.data(), cc.boundary_vertices.size()}, h))
+    if (built.singular_boundary_vertices
+            ? *built.singular_boundary_vertices
+            : singular_on(f_and_domain, {cc.boundary_vertices.data(), cc.boundary_vertices.size()}, h))
       report.warnings.push_back(
           "the domain's boundary is tangent to the manifold along the cut (D = 0 contains M or touches it): the cut "
           "meshed is a perturbed one");
@@ -191,6 +200,11 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
     });
   }
 
+  if (built.topology) {  // (computed where the cells are)
+    report.topology = std::move(*built.topology);
+    if (while_topology) while_topology(report);
+    return report;
+  }
   return finish(std::move(report), o, while_topology);
 }
 

@@ -34,12 +34,22 @@ using ManifoldMaker = std::function<ManifoldFunctions()>;
 using Tracer = std::function<TraceResult(const Triangulation&, const ManifoldFunctions&,
                                          const std::vector<std::vector<double>>& seeds, const TraceOptions&)>;
 
+/// What a ComplexTracer returns: the complex, or, when it is split between processes, its
+/// topology and the regularity verdicts over its vertices, computed where its cells are, with
+/// `cells` holding only the dimensions.
+struct TracedComplex {
+  CellComplex cells;
+  std::optional<TopologyReport> topology;
+  /// singular_on over the vertex cells (F), and over the boundary vertex cells (F and D).
+  std::optional<bool> singular_vertices, singular_boundary_vertices;
+};
+
 /// The walk and the cell complex in place of trace_manifold and build_cell_complex, e.g. both split
 /// between processes (mesh_distributed.h): returns the complex, and the trace's status, message and
 /// counts in `traced` (whose S and S_∂ may stay empty).
-using ComplexTracer =
-    std::function<CellComplex(const Triangulation&, const ManifoldFunctions&,
-                              const std::vector<std::vector<double>>& seeds, const TraceOptions&, TraceResult& traced)>;
+using ComplexTracer = std::function<TracedComplex(const Triangulation&, const ManifoldFunctions&,
+                                                  const std::vector<std::vector<double>>& seeds, const TraceOptions&,
+                                                  TraceResult& traced)>;
 
 struct MeshOptions {
   std::vector<std::vector<double>> seeds;  ///< points near M, d coordinates each

@@ -20,10 +20,14 @@ namespace coxmesh {
 /// anywhere: 0). NaN where a function is not finite near x. Costs (2d + 1)·2d evaluations.
 double regularity(std::span<const ImplicitFunction* const> functions, const double* x, double h);
 
+/// singular_on's defaults: the points tested, and the measure below which a point counts as singular.
+inline constexpr int kRegularitySamples = 48;
+inline constexpr double kRegularityThreshold = 0.02;
+
 /// A conservative verdict on points of a traced set (rows of d coordinates, a sample of which is
 /// tested, at most `samples`, evenly spaced): true when more than a quarter of the finite measures
 /// are below `threshold`.
 bool singular_on(std::span<const ImplicitFunction* const> functions, std::span<const double> points, double h,
-                 int samples = 48, double threshold = 0.02);
+                 int samples = kRegularitySamples, double threshold = kRegularityThreshold);
 
 }  // namespace coxmesh

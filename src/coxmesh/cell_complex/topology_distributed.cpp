@@ -1,0 +1,701 @@
+// The topology of a complex split between ranks, without gathering it (topology_distributed.h). The
+// Betti numbers follow betti_shrink.cpp: collapses and coreductions delete pairs (a, b), a a facet
+// of b, when b has no other remaining facet or a no other remaining coface; either keeps the
+// homology, and what remains is the restriction of the boundary matrix. A rank deletes only pairs
+// of its own cells and counts every cell of another rank as remaining: its counts are never below
+// the true ones, so a count of 1 whose one cell is its own is exact, and since a deletion elsewhere
+// only lowers counts, a pair that qualifies here still does whatever the other ranks delete.
+#include "coxmesh/cell_complex/topology_distributed.h"
+
+#include <phat/algorithms/twist_reduction.h>
+#include <phat/boundary_matrix.h>
+#include <phat/compute_persistence_pairs.h>
+#include <phat/persistence_pairs.h>
+#include <phat/representations/full_pivot_column.h>
+
+#include <algorithm>
+#include <cstring>
+#include <exception>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+
+#include "coxmesh/errors.h"
+#include "coxmesh/util/union_find.h"
+
+namespace coxmesh {
+
+namespace {
+
+using Bytes = std::vector<std::byte>;
+// A facet of another rank, in a facet list of local indices: its global id with this bit set.
+constexpr std::uint32_t kRemote = 0x80000000u;
+
+template <class F>
+void agreed(Communicator& comm, F&& step) {
+  std::exception_ptr failure;
+  try {
+    step();
+  } catch (...) {
+    failure = std::current_exception();
+  }
+  agree_on_failure(comm, failure);
+}
+
+// The levels in the order of GlobalCells (global_cells.h): level 2j + kind (kind 1: boundary) for
+// j = 0..m, so that global ids run by dimension. Each level is cut into `ranks` ranges of
+// consecutive ids; this rank holds range `rank` of every level, its cells numbered locally in
+// the same order.
+struct Layout {
+  int ranks = 1, rank = 0, m = 0;
+  std::vector<std::uint64_t> size, start, local_start;  // per level; start and local_start: one more
+
+  Layout(const CellComplexPart& part, int ranks_, int rank_) : ranks(ranks_), rank(rank_) {
+    m = part.cells.manifold_dimension;
+    for (int j = 0; j <= m; ++j) {
+      size.push_back(j < static_cast<int>(part.interior_sizes.size()) ? part.interior_sizes[j] : 0);
+      size.push_back(j < static_cast<int>(part.boundary_sizes.size()) ? part.boundary_sizes[j] : 0);
+    }
+    start.assign(1, 0);
+    local_start.assign(1, 0);
+    for (int l = 0; l < levels(); ++l) {
+      start.push_back(start.back() + size[l]);
+      local_start.push_back(local_start.back() + (hi(l) - lo(l)));
+    }
+  }
+  int levels() const { return static_cast<int>(size.size()); }
+  std::uint64_t total() const { return start.back(); }
+  std::uint64_t local_count() const { return local_start.back(); }
+  std::uint64_t first(int l, int r) const { return size[l] * static_cast<std::uint64_t>(r) / ranks; }
+  std::uint64_t lo(int l) const { return first(l, rank); }
+  std::uint64_t hi(int l) const { return first(l, rank + 1); }
+  int level_of(std::uint64_t g) const {
+    int l = 0;
+    while (start[l + 1] <= g) ++l;  // (2(m + 1) levels: a short scan)
+    return l;
+  }
+  int local_level_of(std::uint64_t i) const {
+    int l = 0;
+    while (local_start[l + 1] <= i) ++l;
+    return l;
+  }
+  // The rank whose range of level l holds the cell of id u in that level.
+  int owner(int l, std::uint64_t u) const {
+    int r = static_cast<int>(u * static_cast<std::uint64_t>(ranks) / size[l]);
+    while (r + 1 < ranks && first(l, r + 1) <= u) ++r;
+    while (first(l, r) > u) --r;
+    return r;
+  }
+  int owner(std::uint32_t g) const {
+    const int l = level_of(g);
+    return owner(l, g - start[l]);
+  }
+  std::uint32_t local(std::uint32_t g) const {
+    const int l = level_of(g);
+    const std::uint64_t u = g - start[l];
+    return u >= lo(l) && u < hi(l) ? static_cast<std::uint32_t>(local_start[l] + (u - lo(l))) : kRemote;
+  }
+  std::uint32_t global(std::uint32_t i) const {
+    const int l = local_level_of(i);
+    return static_cast<std::uint32_t>(start[l] + lo(l) + (i - local_start[l]));
+  }
+};
+
+// This rank's ranges as one facet CSR over its cells (local indices), facets by global id.
+struct Ranges {
+  std::vector<std::uint32_t> offsets{0}, facets;
+  std::span<const std::uint32_t> of(std::uint64_t i) const {
+    return {facets.data() + offsets[i], facets.data() + offsets[i + 1]};
+  }
+};
+
+// Sends every cell of the part to the rank of its range, level by level, releasing the part's
+// level once it is sent (the peak is one level in flight, not a second copy of the part).
+Ranges redistribute(CellComplexPart& part, const Layout& layout, Communicator& comm) {
+  Ranges out;
+  part.cells.vertices = PointArray{};
+  part.cells.boundary_vertices = PointArray{};
+  std::vector<std::uint32_t> record;
+  for (int l = 0; l < layout.levels(); ++l) {
+    const int j = l / 2;
+    const bool boundary = l % 2 == 1;
+    std::vector<Bytes> outgoing(comm.size());
+    auto& levels = boundary ? part.cells.boundary : part.cells.interior;
+    auto& all_ids = boundary ? part.boundary_ids : part.interior_ids;
+    if (j < static_cast<int>(levels.size()) && j < static_cast<int>(all_ids.size())) {
+      CellLevel& level = levels[j];
+      const std::vector<std::uint32_t>& ids = all_ids[j];
+      for (std::uint32_t c = 0; c < ids.size(); ++c) {
+        record.assign({ids[c], 0});
+        if (j > 0) {
+          for (std::uint32_t f : level.facets(c)) record.push_back(static_cast<std::uint32_t>(layout.start[l - 2] + f));
+          if (!boundary && !level.boundary_facet.empty() && level.boundary_facet[c] != CellLevel::kNone)
+            record.push_back(static_cast<std::uint32_t>(layout.start[l - 1] + level.boundary_facet[c]));
+        }
+        record[1] = static_cast<std::uint32_t>(record.size() - 2);
+        put(outgoing[layout.owner(l, ids[c])], record.data(), record.size());
+      }
+      level = CellLevel{};
+      all_ids[j] = {};
+    }
+    std::vector<std::size_t> counts;
+    const Bytes in = comm.exchange(outgoing, counts);
+    outgoing = {};
+    agreed(comm, [&] {
+      const std::size_t base = layout.local_start[l], n = layout.hi(l) - layout.lo(l);
+      out.offsets.resize(base + n + 1, 0);
+      std::vector<std::uint32_t> words(in.size() / sizeof(std::uint32_t));
+      if (!words.empty()) std::memcpy(words.data(), in.data(), in.size());
+      std::size_t total = 0;
+      for (std::size_t at = 0; at < words.size(); at += 2 + words[at + 1]) {
+        out.offsets[base + 1 + (words[at] - layout.lo(l))] = words[at + 1];
+        total += words[at + 1];
+      }
+      for (std::size_t i = 0; i < n; ++i) out.offsets[base + 1 + i] += out.offsets[base + i];
+      out.facets.resize(out.facets.size() + total);
+      for (std::size_t at = 0; at < words.size(); at += 2 + words[at + 1])
+        std::copy_n(words.begin() + static_cast<std::ptrdiff_t>(at + 2), words[at + 1],
+                    out.facets.begin() + out.offsets[base + (words[at] - layout.lo(l))]);
+    });
+  }
+  part = CellComplexPart{};
+  return out;
+}
+
+// The first failure over all ranks, by `key` (the one-process order of the checks): every rank
+// passes its own first (an empty message: none).
+std::string first_problem(Communicator& comm, std::uint64_t key, const std::string& message) {
+  Bytes mine;
+  if (!message.empty()) put(mine, &key, 1), put(mine, message.data(), message.size());
+  std::vector<std::size_t> counts;
+  const Bytes all = comm.all_gather(mine, counts);
+  std::string best;
+  std::uint64_t best_key = ~std::uint64_t{0};
+  const std::byte* at = all.data();
+  for (const std::size_t count : counts) {
+    if (count > 0) {
+      std::uint64_t k;
+      const std::byte* in = at;
+      take(in, &k, 1);
+      if (k < best_key) best_key = k, best.assign(reinterpret_cast<const char*>(in), count - sizeof k);
+    }
+    at += count;
+  }
+  return best;
+}
+
+// Order of the checks of one process: all interior levels, then the boundary ones; by dimension,
+// then by id.
+std::uint64_t check_order(int level, std::uint64_t id) {
+  return (std::uint64_t(level % 2) << 60) | (std::uint64_t(level / 2) << 52) | id;
+}
+
+// Sends each rank the ids asked of it (asked[r]: of rank r) and returns the answers, rank by rank
+// in the order asked; `answer(local index, out)` appends the answer for one of this rank's cells.
+template <class Answer>
+Bytes ask(Communicator& comm, const Layout& layout, const std::vector<std::vector<std::uint32_t>>& asked,
+          Answer&& answer) {
+  std::vector<Bytes> outgoing(comm.size());
+  for (int r = 0; r < comm.size(); ++r) put(outgoing[r], asked[r].data(), asked[r].size());
+  std::vector<std::size_t> counts;
+  const Bytes in = comm.exchange(outgoing, counts);
+  outgoing.assign(comm.size(), Bytes{});
+  agreed(comm, [&] {
+    const std::byte* at = in.data();
+    for (int r = 0; r < comm.size(); ++r)
+      for (std::size_t i = 0; i < counts[r] / sizeof(std::uint32_t); ++i) {
+        std::uint32_t g;
+        take(at, &g, 1);
+        const std::uint32_t local = layout.local(g);
+        if (local == kRemote) throw std::logic_error("a cell asked of the rank that does not hold it");
+        answer(local, outgoing[r]);
+      }
+  });
+  return comm.exchange(outgoing, counts);
+}
+
+// The ids in `ids` (sorted, distinct) grouped by the rank that holds them.
+std::vector<std::vector<std::uint32_t>> by_owner(const std::vector<std::uint32_t>& ids, const Layout& layout) {
+  std::vector<std::vector<std::uint32_t>> out(layout.ranks);
+  for (std::uint32_t g : ids) out[layout.owner(g)].push_back(g);
+  return out;
+}
+
+void sort_unique(std::vector<std::uint32_t>& v) {
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+}
+
+// Collapses and coreductions (betti_shrink.cpp) over cells 0..n−1 in dimension order, whose facet
+// lists hold local indices or, with kRemote, cells of another rank, which count as never removed.
+class PairReducer {
+ public:
+  PairReducer(const std::vector<std::uint32_t>& offsets, const std::vector<std::uint32_t>& facets,
+              std::span<const std::uint32_t> remote_cofaces)
+      : offsets_(offsets), facets_(facets), cell_(offsets.size() - 1), pinned_(offsets.size() - 1, 0) {
+    const std::uint32_t n = static_cast<std::uint32_t>(cell_.size());
+    for (std::uint32_t a = 0; a < n; ++a) {
+      if (!remote_cofaces.empty() && remote_cofaces[a] > 0) pinned_[a] |= kPinnedUp;
+      for (std::uint32_t i = offsets_[a]; i < offsets_[a + 1]; ++i) {
+        const std::uint32_t f = facets_[i];
+        if (f & kRemote) {
+          pinned_[a] |= kPinnedDown;
+          continue;
+        }
+        ++cell_[a].down, cell_[a].xdown ^= f;
+        ++cell_[f].up, cell_[f].xup ^= a;
+      }
+    }
+    coface_start_.assign(n + 1, 0);
+    std::uint64_t total = 0;
+    for (std::uint32_t a = 0; a < n; ++a) {
+      total += cell_[a].up;
+      if (total > UINT32_MAX) throw InputError("the complex has too many incidences (2^32) for its topology");
+      coface_start_[a + 1] = static_cast<std::uint32_t>(total);
+    }
+    coface_ids_.resize(total);
+    for (std::uint32_t a = 0; a < n; ++a) coface_start_[a] = coface_start_[a + 1];
+    for (std::uint32_t a = n; a-- > 0;)
+      for (std::uint32_t i = offsets_[a]; i < offsets_[a + 1]; ++i)
+        if (!(facets_[i] & kRemote)) coface_ids_[--coface_start_[facets_[i]]] = a;
+    for (std::uint32_t a = 0; a < n; ++a)
+      if (free_down(a) || free_up(a)) pending_.push_back(a);
+  }
+
+  // Removes a vertex whose class is accounted for elsewhere (one per component).
+  void remove_vertex(std::uint32_t v) { remove(v); }
+
+  void reduce() {
+    for (std::size_t head = 0; head < pending_.size(); ++head) {
+      if (head >= kCompactAt && 2 * head >= pending_.size()) {  // (keeps the queue short)
+        pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(head));
+        head = 0;
+      }
+      const std::uint32_t a = pending_[head];
+      if (removed(a)) continue;
+      if (free_down(a)) {  // (coreductions first, as betti_shrink.cpp)
+        const std::uint32_t b = cell_[a].xdown;
+        remove(a), remove(b);
+      } else if (free_up(a)) {
+        const std::uint32_t b = cell_[a].xup;
+        remove(a), remove(b);
+      }
+    }
+    pending_ = {};
+  }
+
+  bool removed(std::uint32_t a) const { return cell_[a].up == kRemoved; }
+  std::size_t remaining() const { return cell_.size() - removed_count_; }
+
+ private:
+  static constexpr std::uint32_t kRemoved = 0xFFFFFFFFu;
+  static constexpr std::uint8_t kPinnedDown = 1, kPinnedUp = 2;  // (a facet, a coface elsewhere)
+  static constexpr std::size_t kCompactAt = 1 << 16;
+
+  bool free_down(std::uint32_t a) const { return cell_[a].down == 1 && !(pinned_[a] & kPinnedDown); }
+  bool free_up(std::uint32_t a) const { return cell_[a].up == 1 && !(pinned_[a] & kPinnedUp); }
+
+  void remove(std::uint32_t x) {
+    cell_[x].up = kRemoved, ++removed_count_;
+    for (std::uint32_t i = offsets_[x]; i < offsets_[x + 1]; ++i) {
+      const std::uint32_t f = facets_[i];
+      if ((f & kRemote) || removed(f)) continue;
+      cell_[f].xup ^= x;
+      if (--cell_[f].up == 1 && free_up(f)) pending_.push_back(f);
+    }
+    for (std::uint32_t i = coface_start_[x]; i < coface_start_[x + 1]; ++i) {
+      const std::uint32_t y = coface_ids_[i];
+      if (removed(y)) continue;
+      cell_[y].xdown ^= x;
+      if (--cell_[y].down == 1 && free_down(y)) pending_.push_back(y);
+    }
+  }
+
+  struct Counts {
+    std::uint32_t down = 0, up = 0, xdown = 0, xup = 0;  // remaining local facets and cofaces
+  };
+  const std::vector<std::uint32_t>& offsets_;
+  const std::vector<std::uint32_t>& facets_;
+  std::vector<Counts> cell_;
+  std::vector<std::uint8_t> pinned_;
+  std::vector<std::uint32_t> coface_start_, coface_ids_, pending_;
+  std::size_t removed_count_ = 0;
+};
+
+// Z/2 Betti numbers 0..m of a chain complex given by facet lists (cells in dimension order,
+// facets before cells), by the matrix reduction of betti_reduction.cpp.
+std::vector<std::size_t> betti_by_reduction(const std::vector<std::uint32_t>& offsets,
+                                            const std::vector<std::uint32_t>& facets, const std::vector<int>& dim,
+                                            int m, const std::vector<std::uint8_t>& keep) {
+  constexpr std::uint32_t kDropped = UINT32_MAX;
+  std::vector<std::uint32_t> column(dim.size(), kDropped);
+  std::vector<int> dim_of;
+  for (std::size_t a = 0; a < dim.size(); ++a)
+    if (keep[a]) column[a] = static_cast<std::uint32_t>(dim_of.size()), dim_of.push_back(dim[a]);
+  phat::boundary_matrix<phat::full_pivot_column> matrix;
+  matrix.set_num_cols(static_cast<phat::index>(dim_of.size()));
+  std::vector<phat::index> col;
+  for (std::size_t a = 0; a < dim.size(); ++a) {
+    if (column[a] == kDropped) continue;
+    col.clear();
+    for (std::uint32_t i = offsets[a]; i < offsets[a + 1]; ++i)
+      if (column[facets[i]] != kDropped) col.push_back(static_cast<phat::index>(column[facets[i]]));
+    std::sort(col.begin(), col.end());
+    matrix.set_col(static_cast<phat::index>(column[a]), col);
+    matrix.set_dim(static_cast<phat::index>(column[a]), static_cast<phat::dimension>(dim[a]));
+  }
+  phat::persistence_pairs pairs;
+  phat::compute_persistence_pairs<phat::twist_reduction>(pairs, matrix);
+  std::vector<std::size_t> betti(m + 1, 0);
+  for (int j : dim_of) ++betti[j];
+  for (phat::index p = 0; p < pairs.get_num_pairs(); ++p) {
+    const auto [birth, death] = pairs.get_pair(p);
+    --betti[dim_of[birth]];
+    --betti[dim_of[death]];
+  }
+  return betti;
+}
+
+// Rank 0: the Betti numbers of what the ranks left (records: global id, facet count, facets by
+// global id, of which those not left are dropped).
+std::vector<std::size_t> finish_betti(const Bytes& records, const Layout& layout, DistributedTopologyStats* stats) {
+  std::vector<std::uint32_t> words(records.size() / sizeof(std::uint32_t));
+  if (!words.empty()) std::memcpy(words.data(), records.data(), records.size());
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> cells;  // (global id, position of its record)
+  for (std::size_t at = 0; at < words.size(); at += 2 + words[at + 1])
+    cells.emplace_back(words[at], static_cast<std::uint32_t>(at));
+  std::sort(cells.begin(), cells.end());
+  const auto index_of = [&](std::uint32_t g) {
+    const auto it = std::lower_bound(cells.begin(), cells.end(), std::make_pair(g, std::uint32_t{0}));
+    return it != cells.end() && it->first == g ? static_cast<std::uint32_t>(it - cells.begin()) : kRemote;
+  };
+  std::vector<std::uint32_t> offsets{0}, facets;
+  std::vector<int> dim;
+  for (const auto& [g, at] : cells) {
+    for (std::uint32_t i = 0; i < words[at + 1]; ++i)
+      if (const std::uint32_t f = index_of(words[at + 2 + i]); f != kRemote) facets.push_back(f);
+    offsets.push_back(static_cast<std::uint32_t>(facets.size()));
+    dim.push_back(layout.level_of(g) / 2);
+  }
+  words = {};
+  cells = {};
+  std::vector<std::uint8_t> keep(dim.size(), 1);
+  {
+    PairReducer reducer(offsets, facets, {});
+    reducer.reduce();
+    for (std::uint32_t a = 0; a < keep.size(); ++a) keep[a] = !reducer.removed(a);
+    if (stats) stats->cells_left = reducer.remaining();
+  }
+  std::vector<std::size_t> betti = betti_by_reduction(offsets, facets, dim, layout.m, keep);
+  return betti;
+}
+
+}  // namespace
+
+TopologyReport analyze_topology_distributed(CellComplexPart&& part, Communicator& comm,
+                                            DistributedTopologyStats* stats) {
+  const Layout layout(part, comm.size(), comm.rank());
+  const int m = layout.m;
+  TopologyReport r;
+  for (int j = 0; j <= m; ++j) {
+    r.cells.push_back(layout.size[2 * j]);
+    r.euler_characteristic += (j % 2 ? -1LL : 1LL) * static_cast<long long>(layout.size[2 * j]);
+  }
+  for (int j = 0; j < m; ++j) {
+    r.boundary_cells.push_back(layout.size[2 * j + 1]);
+    r.euler_characteristic += (j % 2 ? -1LL : 1LL) * static_cast<long long>(layout.size[2 * j + 1]);
+  }
+  if (stats) *stats = DistributedTopologyStats{}, stats->cells = layout.total();
+  if (layout.size[0] == 0) {
+    part = CellComplexPart{};
+    r.manifold_problem = "the complex is empty";
+    return r;
+  }
+  // (the same on every rank: every rank throws it)
+  if (layout.total() >= kRemote) throw InputError("the complex has too many cells (2^31) for its topology");
+  Ranges ranges = redistribute(part, layout, comm);
+  const std::uint32_t n = static_cast<std::uint32_t>(layout.local_count());
+  // The first local cell of level l (the count past the last level): edges from 2, 2-cells from 4.
+  const auto level_begin = [&](int l) { return layout.local_start[std::min(l, layout.levels())]; };
+
+  // Cofaces per cell: of its own kind (the manifold check), and on other ranks (never removed here).
+  std::vector<std::uint32_t> same_kind(n, 0), remote_cofaces(n, 0);
+  {
+    std::vector<Bytes> outgoing(comm.size());
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const int l = layout.local_level_of(i);
+      for (std::uint32_t g : ranges.of(i)) {
+        const std::uint64_t same = layout.level_of(g) % 2 == l % 2;
+        if (const std::uint32_t f = layout.local(g); f != kRemote) {
+          same_kind[f] += static_cast<std::uint32_t>(same);
+        } else {
+          const std::uint64_t word = std::uint64_t{g} << 1 | same;
+          put(outgoing[layout.owner(g)], &word, 1);
+        }
+      }
+    }
+    std::vector<std::size_t> counts;
+    const Bytes in = comm.exchange(outgoing, counts);
+    outgoing = {};
+    agreed(comm, [&] {
+      const std::byte* at = in.data();
+      for (std::size_t k = 0; k < in.size() / sizeof(std::uint64_t); ++k) {
+        std::uint64_t word;
+        take(at, &word, 1);
+        const std::uint32_t f = layout.local(static_cast<std::uint32_t>(word >> 1));
+        if (f == kRemote) throw std::logic_error("a coface count sent to the rank that does not hold the cell");
+        ++remote_cofaces[f], same_kind[f] += static_cast<std::uint32_t>(word & 1);
+      }
+    });
+  }
+
+  // Closed: every edge cell has two distinct ends, and the facets of the facets of every cell
+  // meet in pairs (topology.cpp). The facet lists of facets held elsewhere are fetched.
+  {
+    std::vector<std::uint32_t> wanted;
+    for (std::uint64_t i = level_begin(4); i < n; ++i)
+      for (std::uint32_t g : ranges.of(i))
+        if (layout.local(g) == kRemote) wanted.push_back(g);
+    sort_unique(wanted);
+    std::uint64_t fetched = wanted.size();
+    comm.sum(&fetched, 1);
+    if (stats) stats->interface_cells = fetched;
+    const std::vector<std::vector<std::uint32_t>> asked = by_owner(wanted, layout);
+    wanted = {};
+    const Bytes answers = ask(comm, layout, asked, [&](std::uint32_t i, Bytes& out) {
+      const std::uint32_t count = ranges.offsets[i + 1] - ranges.offsets[i];
+      put(out, &count, 1);
+      put(out, ranges.facets.data() + ranges.offsets[i], count);
+    });
+    std::string problem;
+    std::uint64_t key = 0;
+    agreed(comm, [&] {
+      std::vector<std::pair<std::uint32_t, std::uint32_t>> ghost;  // (global id, its list in `words`)
+      std::vector<std::uint32_t> words(answers.size() / sizeof(std::uint32_t));
+      if (!words.empty()) std::memcpy(words.data(), answers.data(), answers.size());
+      std::size_t at = 0;
+      for (const auto& from : asked)
+        for (std::uint32_t g : from) ghost.emplace_back(g, static_cast<std::uint32_t>(at)), at += 1 + words[at];
+      std::sort(ghost.begin(), ghost.end());
+      const auto facets_of = [&](std::uint32_t g) -> std::span<const std::uint32_t> {
+        if (const std::uint32_t f = layout.local(g); f != kRemote) return ranges.of(f);
+        const auto it = std::lower_bound(ghost.begin(), ghost.end(), std::make_pair(g, std::uint32_t{0}));
+        return {words.data() + it->second + 1, words[it->second]};
+      };
+      std::vector<std::uint32_t> ridges;
+      for (int l = 2; l < layout.levels(); ++l) {
+        const int j = l / 2;
+        const bool boundary = l % 2 == 1;
+        for (std::uint64_t i = layout.local_start[l]; i < layout.local_start[l + 1]; ++i) {
+          const std::span<const std::uint32_t> facets = ranges.of(i);
+          std::string why;
+          if (j == 1) {
+            const std::size_t ends = facets.size();
+            const std::string edge = boundary ? "a boundary edge cell" : "an edge cell";
+            if (ends != 2)
+              why = edge + " has " + std::to_string(ends) + (ends == 1 ? " end point" : " end points") + ", not 2";
+            else if (facets[0] == facets[1])
+              why = edge + " has the same vertex at both ends";
+          } else {
+            ridges.clear();
+            for (std::uint32_t f : facets)
+              for (std::uint32_t e : facets_of(f)) ridges.push_back(e);
+            std::sort(ridges.begin(), ridges.end());
+            for (std::size_t k = 0; k < ridges.size() && why.empty(); k += 2)
+              if (k + 1 == ridges.size() || ridges[k] != ridges[k + 1])
+                why = "a " + std::to_string(j) + "-cell is not closed (a face of its boundary is not shared)";
+          }
+          if (!why.empty()) {  // (the first of this level here; a level before it in the order may fail too)
+            const std::uint64_t k = check_order(l, layout.lo(l) + (i - layout.local_start[l]));
+            if (problem.empty() || k < key) problem = std::move(why), key = k;
+            break;
+          }
+        }
+      }
+    });
+    problem = first_problem(comm, key, problem);
+    if (!problem.empty()) r.manifold_problem = "not a closed complex: " + problem;
+    r.closed = problem.empty();
+  }
+
+  // The manifold check of topology.cpp, from the coface counts.
+  if (r.closed) {
+    const int boundary_levels = m;  // (boundary j = 0..m − 1; empty without a domain)
+    std::string problem;
+    std::uint64_t key = 0;
+    for (int l = 0; l < layout.levels(); ++l) {
+      const int j = l / 2;
+      const bool boundary = l % 2 == 1;
+      if (boundary ? !(j + 1 < m && j + 1 < boundary_levels) : !(j < m)) continue;
+      for (std::uint64_t i = layout.local_start[l]; i < layout.local_start[l + 1]; ++i) {
+        const std::uint32_t count = same_kind[i];
+        std::string why;
+        if (!boundary) {
+          if (count == 0)
+            why = "a " + std::to_string(j) + "-cell lies in no " + std::to_string(j + 1) + "-cell";
+          else if (j == m - 1 && count != 2)
+            why = "an (m-1)-cell lies in " + std::to_string(count) + " m-cells instead of 2";
+        } else {
+          if (count == 0)
+            why = "a boundary " + std::to_string(j) + "-cell lies in no boundary cell above it";
+          else if (j == m - 2 && count != 2)
+            why = "a boundary (m-2)-cell lies in " + std::to_string(count) + " boundary (m-1)-cells instead of 2";
+        }
+        if (!why.empty()) {
+          const std::uint64_t k = check_order(l, layout.lo(l) + (i - layout.local_start[l]));
+          if (problem.empty() || k < key) problem = std::move(why), key = k;
+          break;
+        }
+      }
+    }
+    r.manifold_problem = first_problem(comm, key, problem);
+  }
+  r.is_manifold = r.manifold_problem.empty();
+  same_kind = {};
+  if (!r.closed) return r;
+
+  // β_0: the components of the vertex graph of each range (its vertices and the ends of its
+  // edges), glued where an end is a vertex of another range. One vertex per component of a range
+  // is removed before the reductions: removing a set V of vertices that meets every component
+  // lowers β_0 to 0 and raises β_1 by |V| − β_0, and changes nothing else (the exact sequence of
+  // the pair (complex, V)).
+  std::vector<std::uint32_t> first_vertices;  // V here
+  std::uint64_t beta0 = 0;
+  {
+    const std::uint32_t vertices = static_cast<std::uint32_t>(level_begin(2));
+    std::vector<std::uint32_t> ghosts;
+    for (std::uint64_t i = level_begin(2); i < level_begin(4); ++i)
+      for (std::uint32_t g : ranges.of(i))
+        if (layout.local(g) == kRemote) ghosts.push_back(g);
+    sort_unique(ghosts);
+    UnionFind components(vertices + ghosts.size());
+    const auto node = [&](std::uint32_t g) {
+      const std::uint32_t f = layout.local(g);
+      return f != kRemote ? f
+                          : vertices + static_cast<std::uint32_t>(std::lower_bound(ghosts.begin(), ghosts.end(), g) -
+                                                                  ghosts.begin());
+    };
+    for (std::uint64_t i = level_begin(2); i < level_begin(4); ++i) {
+      const std::span<const std::uint32_t> ends = ranges.of(i);  // (closed: two)
+      components.unite(node(ends[0]), node(ends[1]));
+    }
+    std::uint64_t classes = 0;
+    std::vector<std::uint8_t> has_first(components.parent.size(), 0);
+    for (std::uint32_t x = 0; x < components.parent.size(); ++x) {
+      const std::uint32_t root = components.find(x);
+      classes += root == x;
+      if (x < vertices && !has_first[root]) has_first[root] = 1, first_vertices.push_back(x);
+    }
+    const auto label = [&](std::uint32_t x) { return std::uint64_t(layout.rank) << 32 | components.find(x); };
+    const std::vector<std::vector<std::uint32_t>> asked = by_owner(ghosts, layout);
+    const Bytes answers = ask(comm, layout, asked, [&](std::uint32_t i, Bytes& out) {
+      const std::uint64_t l = label(i);
+      put(out, &l, 1);
+    });
+    Bytes glue;  // classes here, then pairs of labels of one class
+    put(glue, &classes, 1);
+    {
+      const std::byte* at = answers.data();
+      for (const auto& from : asked)
+        for (std::uint32_t g : from) {
+          std::uint64_t pair[2];
+          pair[0] = label(node(g));
+          take(at, &pair[1], 1);
+          put(glue, pair, 2);
+        }
+    }
+    std::vector<std::size_t> counts;
+    const Bytes all = comm.gather_to_root(glue, counts);
+    glue = {};
+    std::vector<std::byte> total(sizeof(std::uint64_t));
+    agreed(comm, [&] {
+      if (comm.rank() != 0) return;
+      std::unordered_map<std::uint64_t, std::uint32_t> index;
+      std::vector<std::uint64_t> words(all.size() / sizeof(std::uint64_t));
+      if (!words.empty()) std::memcpy(words.data(), all.data(), all.size());
+      std::uint64_t sum = 0;
+      std::size_t at = 0;
+      std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+      for (const std::size_t count : counts) {
+        const std::size_t end = at + count / sizeof(std::uint64_t);
+        sum += words[at++];
+        for (; at < end; at += 2) {
+          const auto a = index.try_emplace(words[at], static_cast<std::uint32_t>(index.size())).first->second;
+          const auto b = index.try_emplace(words[at + 1], static_cast<std::uint32_t>(index.size())).first->second;
+          edges.emplace_back(a, b);
+        }
+      }
+      UnionFind glued(index.size());
+      for (const auto& [a, b] : edges) sum -= glued.unite(a, b);
+      std::memcpy(total.data(), &sum, sizeof sum);
+    });
+    comm.broadcast(total);
+    std::memcpy(&beta0, total.data(), sizeof beta0);
+  }
+  std::uint64_t removed_vertices = first_vertices.size();
+  comm.sum(&removed_vertices, 1);
+
+  // The reductions of each range, then rank 0's of what is left.
+  for (std::uint32_t& g : ranges.facets)
+    if (const std::uint32_t f = layout.local(g); f != kRemote)
+      g = f;
+    else
+      g |= kRemote;
+  Bytes left;
+  std::uint64_t left_cells = 0;
+  agreed(comm, [&] {
+    PairReducer reducer(ranges.offsets, ranges.facets, remote_cofaces);
+    remote_cofaces = {};
+    for (std::uint32_t v : first_vertices) reducer.remove_vertex(v);
+    reducer.reduce();
+    std::vector<std::uint32_t> record;
+    for (std::uint32_t i = 0; i < n; ++i) {
+      if (reducer.removed(i)) continue;
+      ++left_cells;
+      record.assign({layout.global(i), 0});
+      for (std::uint32_t f : ranges.of(i))
+        if (f & kRemote)
+          record.push_back(f & ~kRemote);
+        else if (!reducer.removed(f))
+          record.push_back(layout.global(f));
+      record[1] = static_cast<std::uint32_t>(record.size() - 2);
+      put(left, record.data(), record.size());
+    }
+  });
+  ranges = Ranges{};
+  comm.sum(&left_cells, 1);
+  if (stats) stats->cells_to_rank0 = left_cells;
+  std::vector<std::size_t> counts;
+  const Bytes all = comm.gather_to_root(left, counts);
+  left = {};
+  std::vector<std::byte> result;
+  agreed(comm, [&] {
+    if (comm.rank() != 0) return;
+    std::vector<std::size_t> betti = finish_betti(all, layout, stats);
+    if (m == 0) {
+      betti = {beta0};
+    } else {
+      COXMESH_ASSERT(betti[0] == 0);
+      const long long b1 =
+          static_cast<long long>(betti[1]) - static_cast<long long>(removed_vertices) + static_cast<long long>(beta0);
+      COXMESH_ASSERT(b1 >= 0);
+      betti[0] = beta0, betti[1] = static_cast<std::size_t>(b1);
+    }
+    for (std::size_t b : betti) {
+      const std::uint64_t x = b;
+      put(result, &x, 1);
+    }
+  });
+  comm.broadcast(result);
+  r.betti.resize(result.size() / sizeof(std::uint64_t));
+  const std::byte* at = result.data();
+  for (std::size_t& b : r.betti) {
+    std::uint64_t x;
+    take(at, &x, 1);
+    b = x;
+  }
+  return r;
+}
+
+}  // namespace coxmesh
