@@ -1,18 +1,30 @@
-// The kd-tree of a point cloud: nanoflann's single-index kd-tree instantiated for each d up to
-// SampleTree::kFixedMaxDimension, so that a query's per-dimension distances live on the stack.
+// The kd-tree of a point cloud. nanoflann builds it; its nodes are then copied into one flat array
+// and the samples into coordinate-major arrays in the tree's order, and the queries run on that copy:
+// they visit the same nodes in the same order and compute the same distances as nanoflann's search,
+// so they find exactly what it finds (ties included), only faster (see "Point clouds" in
+// docs/benchmarks.md).
 #include "coxmesh/oracle/sample_tree.h"
 
+#include <algorithm>
+#include <array>
 #include <limits>
 #include <nanoflann.hpp>
 #include <utility>
+#include <vector>
 
 #include "coxmesh/lattice/simplex.h"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace coxmesh {
 
 namespace {
 
-// nanoflann's view of the n × d row-major samples.
+constexpr int kLeafSize = 16;  // nanoflann's largest leaf
+
+// nanoflann's view of the n × d row-major samples (only to build the tree).
 struct Rows {
   const double* data;
   std::size_t n;
@@ -24,97 +36,278 @@ struct Rows {
     return false;
   }
 };
+using BuildTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Rows, double, std::uint32_t>,
+                                                      Rows, -1, std::uint32_t>;
 
-// Keeps the `capacity` nearest samples closer than a radius, sorted, in caller-owned arrays (no
-// allocation; nanoflann's own radius result set grows a std::vector).
-class NearestWithin {
+// The candidates of one query: the samples found closer than the bound, appended in the order the
+// search meets them without a branch per sample (sorting each into place as it came, as nanoflann's
+// result sets do, cost a third of a query in mispredicted branches). The answer is the `capacity`
+// smallest by (distance, order met), which is what a sorted insertion that keeps earlier samples
+// first among equals leaves. The bound only prunes the search, so it may lag behind the true
+// capacity-th distance: it is tightened when the buffer fills.
+class Candidates {
  public:
-  using DistanceType = double;
-  using IndexType = std::uint32_t;
-  NearestWithin(double radius2, int capacity, std::uint32_t* index, double* distance2)
-      : radius2_(radius2), capacity_(capacity), index_(index), distance2_(distance2) {}
-  std::size_t size() const { return count_; }
-  bool full() const { return count_ == capacity_; }
-  double worstDist() const { return count_ == capacity_ ? distance2_[capacity_ - 1] : radius2_; }
-  bool addPoint(double dist, std::uint32_t i) {
-    if (dist >= worstDist()) return true;
-    int pos = count_ < capacity_ ? count_++ : capacity_ - 1;
-    for (; pos > 0 && distance2_[pos - 1] > dist; --pos) {
-      distance2_[pos] = distance2_[pos - 1];
-      index_[pos] = index_[pos - 1];
+  Candidates(double radius2, int capacity) : bound_(radius2), capacity_(capacity) {
+    limit_ = std::max(2 * capacity_, capacity_ + 32);
+    if (static_cast<int>(scratch().size()) < limit_ + kLeafSize) scratch().resize(limit_ + kLeafSize);
+    slot_ = scratch().data();
+  }
+  double bound() const { return bound_; }
+  /// Samples first, first + 1, … at squared distances d2[0..count) (count ≤ kLeafSize).
+  void add_leaf(const double* d2, int count, std::uint32_t first) {
+    const double bound = bound_;
+    for (int i = 0; i < count; ++i) {
+      slot_[count_] = {d2[i], first + static_cast<std::uint32_t>(i)};
+      count_ += d2[i] < bound;
     }
-    distance2_[pos] = dist;
-    index_[pos] = i;
-    return true;
+    if (count_ >= limit_) keep_nearest();
+  }
+  /// The answer, nearest first, into index[0..r) (positions in the tree) and distance2[0..r).
+  int finish(std::uint32_t* index, double* distance2) {
+    if (count_ > capacity_) keep_nearest();
+    if (count_ <= kRankedAtMost) {
+      rank_into(index, distance2);
+    } else {  // (large neighbourhoods: an insertion sort, stable and without a buffer)
+      for (int i = 0; i < count_; ++i) {
+        int at = i;
+        for (; at > 0 && distance2[at - 1] > slot_[i].d2; --at) {
+          distance2[at] = distance2[at - 1];
+          index[at] = index[at - 1];
+        }
+        distance2[at] = slot_[i].d2;
+        index[at] = slot_[i].position;
+      }
+    }
+    return count_;
   }
 
  private:
-  double radius2_;
-  int capacity_, count_ = 0;
-  std::uint32_t* index_;
-  double* distance2_;
+  struct Slot {
+    double d2;
+    std::uint32_t position;
+  };
+  static constexpr int kRankedAtMost = 48;
+
+  static std::vector<Slot>& scratch() {
+    thread_local std::vector<Slot> buffer;
+    return buffer;
+  }
+
+  // Keeps the `capacity` smallest by (distance, order met), in the order met; the bound becomes the
+  // largest distance kept.
+  void keep_nearest() {
+    thread_local std::vector<double> values;
+    values.resize(count_);
+    for (int i = 0; i < count_; ++i) values[i] = slot_[i].d2;
+    std::nth_element(values.begin(), values.begin() + (capacity_ - 1), values.end());
+    const double kth = values[capacity_ - 1];
+    int below = 0;
+    for (int i = 0; i < count_; ++i) below += slot_[i].d2 < kth;
+    int ties_left = capacity_ - below;  // the earliest samples at exactly the k-th distance
+    int kept = 0;
+    for (int i = 0; i < count_; ++i) {
+      const bool keep = slot_[i].d2 < kth || (slot_[i].d2 == kth && ties_left-- > 0);
+      if (keep) slot_[kept++] = slot_[i];
+    }
+    count_ = kept;
+    bound_ = kth;
+  }
+
+  // Each candidate's rank: those before it at most as far, and those after it nearer.
+  void rank_into(std::uint32_t* index, double* distance2) const {
+    std::array<double, kRankedAtMost> d;
+    for (int i = 0; i < count_; ++i) d[i] = slot_[i].d2;
+    for (int i = 0; i < count_; ++i) {
+      const double di = d[i];
+      int rank = 0, j = 0;
+#if defined(__SSE2__)
+      const __m128d vi = _mm_set1_pd(di);
+      __m128i sum = _mm_setzero_si128();  // (comparisons give all-ones lanes: subtracting counts them)
+      for (; j + 2 <= i; j += 2) sum = _mm_sub_epi64(sum, _mm_castpd_si128(_mm_cmple_pd(_mm_loadu_pd(&d[j]), vi)));
+      for (; j < i; ++j) rank += d[j] <= di;
+      for (j = i + 1; j + 2 <= count_; j += 2)
+        sum = _mm_sub_epi64(sum, _mm_castpd_si128(_mm_cmplt_pd(_mm_loadu_pd(&d[j]), vi)));
+      rank += _mm_cvtsi128_si32(sum) + _mm_cvtsi128_si32(_mm_unpackhi_epi64(sum, sum));
+#else
+      for (; j < i; ++j) rank += d[j] <= di;
+      j = i + 1;
+#endif
+      for (; j < count_; ++j) rank += d[j] < di;
+      index[rank] = slot_[i].position;
+      distance2[rank] = di;
+    }
+  }
+
+  double bound_;
+  int capacity_, limit_, count_ = 0;
+  Slot* slot_;
+};
+
+// The nearest sample only: the first met at the smallest distance.
+class Nearest {
+ public:
+  double bound() const { return best_; }
+  void add_leaf(const double* d2, int count, std::uint32_t first) {
+    for (int i = 0; i < count; ++i)
+      if (d2[i] < best_) {
+        best_ = d2[i];
+        position_ = first + static_cast<std::uint32_t>(i);
+      }
+  }
+  std::uint32_t position() const { return position_; }
+
+ private:
+  double best_ = std::numeric_limits<double>::infinity();
+  std::uint32_t position_ = 0;
 };
 
 }  // namespace
 
 struct SampleTree::Index {
-  virtual ~Index() = default;
-  virtual int search(const double* x, NearestWithin& result) const = 0;
-};
+  // Interior: split on `feature`, child one at the next node, child two at `second`; the children's
+  // extents along the feature end at `low` and begin at `high` (nanoflann's divlow, divhigh).
+  // Leaf (feature < 0): the samples at positions [begin, end).
+  struct Node {
+    int feature;
+    std::uint32_t second_or_end;
+    std::uint32_t begin;
+    double low, high;
+  };
+  int d;
+  std::size_t n;
+  std::vector<Node> nodes;
+  std::vector<double> coordinates;      // coordinate t of the sample at position p: [t * n + p]
+  std::vector<std::uint32_t> original;  // position in the tree → index of the sample
+  std::vector<double> box_low, box_high;
 
-namespace {
-
-template <int Dim>
-class TreeIndex final : public SampleTree::Index {
- public:
-  TreeIndex(const Rows& rows) : rows_(rows), tree_(rows.d, rows_, nanoflann::KDTreeSingleIndexAdaptorParams(16)) {}
-  int search(const double* x, NearestWithin& result) const override {
-    tree_.findNeighbors(result, x, nanoflann::SearchParams());
-    return static_cast<int>(result.size());
+  Index(const double* points, std::size_t count, int dimension) : d(dimension), n(count) {
+    const Rows rows{points, n, d};
+    BuildTree tree(d, rows, nanoflann::KDTreeSingleIndexAdaptorParams(kLeafSize));
+    original.assign(tree.vAcc.begin(), tree.vAcc.end());
+    coordinates.resize(n * d);
+    for (std::size_t p = 0; p < n; ++p)
+      for (int t = 0; t < d; ++t) coordinates[t * n + p] = points[static_cast<std::size_t>(original[p]) * d + t];
+    for (int t = 0; t < d; ++t) {
+      box_low.push_back(tree.root_bbox[t].low);
+      box_high.push_back(tree.root_bbox[t].high);
+    }
+    copy(tree.root_node);
   }
 
- private:
-  using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Rows, double, std::uint32_t>,
-                                                   Rows, Dim, std::uint32_t>;
-  Rows rows_;
-  Tree tree_;
-};
-
-template <int Dim>
-std::unique_ptr<const SampleTree::Index> make_index(const Rows& rows) {
-  if constexpr (Dim > SampleTree::kFixedMaxDimension) {
-    return std::make_unique<TreeIndex<-1>>(rows);
-  } else {
-    if (rows.d == Dim) return std::make_unique<TreeIndex<Dim>>(rows);
-    return make_index<Dim + 1>(rows);
+  std::uint32_t copy(const BuildTree::Node* node) {
+    const auto at = static_cast<std::uint32_t>(nodes.size());
+    nodes.emplace_back();
+    if (node->child1 == nullptr && node->child2 == nullptr) {
+      nodes[at] = {-1, static_cast<std::uint32_t>(node->node_type.lr.right),
+                   static_cast<std::uint32_t>(node->node_type.lr.left), 0, 0};
+      return at;
+    }
+    copy(node->child1);
+    const std::uint32_t second = copy(node->child2);
+    nodes[at] = {static_cast<int>(node->node_type.sub.divfeat), second, 0, node->node_type.sub.divlow,
+                 node->node_type.sub.divhigh};
+    return at;
   }
-}
 
-}  // namespace
+  template <int Dim, class Result>
+  void search(const double* x, Result& result) const {
+    std::array<double, kMaxDimension> dists{};
+    double distance2 = 0;
+    for (int t = 0; t < d; ++t) {
+      if (x[t] < box_low[t]) {
+        dists[t] = (x[t] - box_low[t]) * (x[t] - box_low[t]);
+        distance2 += dists[t];
+      }
+      if (x[t] > box_high[t]) {
+        dists[t] = (x[t] - box_high[t]) * (x[t] - box_high[t]);
+        distance2 += dists[t];
+      }
+    }
+    search_node<Dim>(x, 0, distance2, dists.data(), result);
+  }
+
+  // nanoflann's searchLevel: the nearer child first, the other one if the box distance (grown
+  // along the split coordinate) is within the bound.
+  template <int Dim, class Result>
+  void search_node(const double* x, std::uint32_t at, double box_distance2, double* dists, Result& result) const {
+    const Node& node = nodes[at];
+    if (node.feature < 0) {
+      const int dim = Dim > 0 ? Dim : d;
+      const int count = static_cast<int>(node.second_or_end - node.begin);
+      std::array<double, kLeafSize> d2;
+      const double* c = coordinates.data() + node.begin;
+      for (int i = 0; i < count; ++i) {
+        double s = 0;
+        for (int t = 0; t < dim; ++t) {
+          const double diff = x[t] - c[t * n + i];
+          s += diff * diff;
+        }
+        d2[i] = s;
+      }
+      result.add_leaf(d2.data(), count, node.begin);
+      return;
+    }
+    const int f = node.feature;
+    const double v = x[f];
+    std::uint32_t near, far;
+    double cut;
+    if ((v - node.low) + (v - node.high) < 0) {
+      near = at + 1;
+      far = node.second_or_end;
+      cut = (v - node.high) * (v - node.high);
+    } else {
+      near = node.second_or_end;
+      far = at + 1;
+      cut = (v - node.low) * (v - node.low);
+    }
+    search_node<Dim>(x, near, box_distance2, dists, result);
+    const double saved = dists[f];
+    box_distance2 = box_distance2 + cut - saved;
+    dists[f] = cut;
+    if (box_distance2 <= result.bound()) search_node<Dim>(x, far, box_distance2, dists, result);
+    dists[f] = saved;
+  }
+
+  template <class Result>
+  void run(const double* x, Result& result) const {
+    switch (d) {  // the common dimensions with the coordinate loop unrolled
+      case 2:
+        return search<2>(x, result);
+      case 3:
+        return search<3>(x, result);
+      case 4:
+        return search<4>(x, result);
+      default:
+        return search<-1>(x, result);
+    }
+  }
+};
 
 SampleTree::SampleTree(std::vector<double> points, int d) : points_(std::move(points)), d_(d) {
   check_dimension(d);
   if (points_.empty() || points_.size() % d != 0)
     throw InputError("a point cloud needs at least one point of R^" + std::to_string(d));
   if (points_.size() / d >= 0xFFFFFFFFu) throw InputError("too many samples (at most 2^32 − 1)");
-  index_ = make_index<1>(Rows{points_.data(), points_.size() / d, d});
+  index_ = std::make_unique<const Index>(points_.data(), points_.size() / d, d);
 }
 
 SampleTree::~SampleTree() = default;
 
 std::uint32_t SampleTree::nearest(const double* x, double* distance2) const {
-  std::uint32_t i = 0;
-  *distance2 = std::numeric_limits<double>::infinity();
-  NearestWithin result(std::numeric_limits<double>::infinity(), 1, &i, distance2);
-  index_->search(x, result);
-  return i;
+  Nearest result;
+  index_->run(x, result);
+  *distance2 = result.bound();
+  return index_->original[result.position()];
 }
 
 int SampleTree::nearest_within(const double* x, double radius2, int capacity, std::uint32_t* index,
                                double* distance2) const {
   if (capacity <= 0) return 0;
-  NearestWithin result(radius2, capacity, index, distance2);
-  return index_->search(x, result);
+  Candidates result(radius2, capacity);
+  index_->run(x, result);
+  const int count = result.finish(index, distance2);
+  for (int i = 0; i < count; ++i) index[i] = index_->original[index[i]];
+  return count;
 }
 
 void local_scatter(const SampleTree& tree, const std::uint32_t* ids, int count, LocalVector& mean,
