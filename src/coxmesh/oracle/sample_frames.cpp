@@ -7,7 +7,9 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <numeric>
+#include <utility>
 
 #include "coxmesh/lattice/simplex.h"
 #include "coxmesh/util/parallel_for.h"
@@ -54,24 +56,38 @@ double overlap_determinant(const double* ui, const double* uj, int k, int d) {
 }
 
 // Sorts by (weight, a, b) edges already ordered by (a, b): a stable radix sort on the weight's
-// bits (mapped so that unsigned order is the order of the doubles), 11 bits a pass.
+// bits (mapped so that unsigned order is the order of the doubles), 11 bits a pass. The counts of
+// every pass come from one read of the edges, and a pass whose digit is the same everywhere is skipped.
 void sort_by_weight(std::vector<Edge>& edges) {
   auto key = [](double w) {
     std::uint64_t u;
     std::memcpy(&u, &w, sizeof u);
     return (u >> 63) ? ~u : u | (std::uint64_t{1} << 63);
   };
-  std::vector<Edge> buffer(edges.size());
-  constexpr int kBits = 11;
-  for (int shift = 0; shift < 64; shift += kBits) {
-    std::vector<std::size_t> count((std::size_t{1} << kBits) + 1, 0);
-    for (const Edge& e : edges) ++count[((key(e.weight) >> shift) & ((1u << kBits) - 1)) + 1];
-    if (std::any_of(count.begin(), count.end(), [&](std::size_t c) { return c == edges.size(); }))
-      continue;  // one digit everywhere: nothing to do
-    for (std::size_t b = 1; b < count.size(); ++b) count[b] += count[b - 1];
-    for (const Edge& e : edges) buffer[count[(key(e.weight) >> shift) & ((1u << kBits) - 1)]++] = e;
-    edges.swap(buffer);
+  constexpr int kBits = 11, kPasses = (64 + kBits - 1) / kBits;
+  constexpr std::size_t kDigits = std::size_t{1} << kBits;
+  std::vector<std::size_t> count(kPasses * kDigits, 0);
+  for (const Edge& e : edges) {
+    const std::uint64_t k = key(e.weight);
+    for (int pass = 0; pass < kPasses; ++pass) ++count[pass * kDigits + ((k >> (pass * kBits)) & (kDigits - 1))];
   }
+  std::unique_ptr<Edge[]> buffer;  // (not value-initialised: every slot is written before it is read)
+  Edge* from = edges.data();
+  for (int pass = 0; pass < kPasses; ++pass) {
+    std::size_t* c = count.data() + pass * kDigits;
+    if (std::any_of(c, c + kDigits, [&](std::size_t n) { return n == edges.size(); })) continue;
+    if (!buffer) buffer.reset(new Edge[edges.size()]);
+    Edge* to = from == edges.data() ? buffer.get() : edges.data();
+    std::size_t start = 0;
+    for (std::size_t b = 0; b < kDigits; ++b) start += std::exchange(c[b], start);
+    const int shift = pass * kBits;
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+      const Edge& e = from[i];
+      to[c[(key(e.weight) >> shift) & (kDigits - 1)]++] = e;
+    }
+    from = to;
+  }
+  if (from != edges.data()) std::copy(from, from + edges.size(), edges.data());
 }
 
 // The orthogonal factor W Vᵀ of A = W Σ Vᵀ: the rotation (or reflection) nearest to A.
@@ -186,6 +202,7 @@ SampleFrames estimate_frames(const SampleTree& tree, int m, const FrameOptions& 
   // passes through such a gap at about half its length from every sample.
   {
     std::vector<Edge> by_length;
+    by_length.reserve(edges.size());
     for (const Edge& e : edges)
       if (out.within_radius[e.a] > m && out.within_radius[e.b] > m) {
         double s = 0;
@@ -199,14 +216,23 @@ SampleFrames estimate_frames(const SampleTree& tree, int m, const FrameOptions& 
       if (gaps.unite(e.a, e.b)) out.longest_gap = std::max(out.longest_gap, std::sqrt(e.weight));
   }
 
-  // Kruskal: the minimum spanning forest, and the components.
+  // Kruskal: the minimum spanning forest, and the components. Each sample's tree neighbours in the
+  // order Kruskal joined them, in one array (a vector per sample was an allocation per sample).
   UnionFind uf(n);
-  std::vector<std::vector<std::uint32_t>> tree_adjacent(n);
+  std::vector<std::uint32_t> tree_edges;  // a, b of each joining edge
+  tree_edges.reserve(2 * n);
   for (const Edge& e : edges)
-    if (uf.unite(e.a, e.b)) {
-      tree_adjacent[e.a].push_back(e.b);
-      tree_adjacent[e.b].push_back(e.a);
+    if (uf.unite(e.a, e.b)) tree_edges.insert(tree_edges.end(), {e.a, e.b});
+  std::vector<std::uint32_t> adjacent_first(n + 1, 0), adjacent(tree_edges.size());
+  for (std::uint32_t v : tree_edges) ++adjacent_first[v + 1];
+  for (std::size_t i = 0; i < n; ++i) adjacent_first[i + 1] += adjacent_first[i];
+  {
+    std::vector<std::uint32_t> fill(adjacent_first.begin(), adjacent_first.end() - 1);
+    for (std::size_t e = 0; e < tree_edges.size(); e += 2) {
+      adjacent[fill[tree_edges[e]]++] = tree_edges[e + 1];
+      adjacent[fill[tree_edges[e + 1]]++] = tree_edges[e];
     }
+  }
   out.component.assign(n, 0);
   std::vector<std::uint32_t> id_of_root(n, 0xFFFFFFFFu);
   for (std::size_t i = 0; i < n; ++i) {
@@ -235,7 +261,8 @@ SampleFrames estimate_frames(const SampleTree& tree, int m, const FrameOptions& 
       queue.assign(1, static_cast<std::uint32_t>(root));
       for (std::size_t head = 0; head < queue.size(); ++head) {
         const std::uint32_t p = queue[head];
-        for (std::uint32_t c : tree_adjacent[p]) {
+        for (std::uint32_t j = adjacent_first[p]; j < adjacent_first[p + 1]; ++j) {
+          const std::uint32_t c = adjacent[j];
           if (seen[c]) continue;
           seen[c] = 1;
           queue.push_back(c);

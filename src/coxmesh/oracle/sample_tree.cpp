@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <nanoflann.hpp>
 #include <utility>
@@ -49,8 +50,11 @@ class Candidates {
  public:
   Candidates(double radius2, int capacity) : bound_(radius2), capacity_(capacity) {
     limit_ = std::max(2 * capacity_, capacity_ + 32);
-    if (static_cast<int>(scratch().size()) < limit_ + kLeafSize) scratch().resize(limit_ + kLeafSize);
-    slot_ = scratch().data();
+    slot_ = on_stack_.data();
+    if (limit_ + kLeafSize > kOnStack) {  // (only neighbourhoods larger than the defaults: grown once a thread)
+      if (static_cast<int>(scratch().size()) < limit_ + kLeafSize) scratch().resize(limit_ + kLeafSize);
+      slot_ = scratch().data();
+    }
   }
   double bound() const { return bound_; }
   /// Samples first, first + 1, … at squared distances d2[0..count) (count ≤ kLeafSize).
@@ -87,6 +91,7 @@ class Candidates {
     std::uint32_t position;
   };
   static constexpr int kRankedAtMost = 48;
+  static constexpr int kOnStack = 160;  // the PCA's 65 nearest with room to spare
 
   static std::vector<Slot>& scratch() {
     thread_local std::vector<Slot> buffer;
@@ -96,10 +101,12 @@ class Candidates {
   // Keeps the `capacity` smallest by (distance, order met), in the order met; the bound becomes the
   // largest distance kept.
   void keep_nearest() {
-    thread_local std::vector<double> values;
-    values.resize(count_);
+    std::array<double, kOnStack> small;
+    thread_local std::vector<double> large;
+    if (count_ > kOnStack) large.resize(count_);
+    double* values = count_ > kOnStack ? large.data() : small.data();
     for (int i = 0; i < count_; ++i) values[i] = slot_[i].d2;
-    std::nth_element(values.begin(), values.begin() + (capacity_ - 1), values.end());
+    std::nth_element(values, values + (capacity_ - 1), values + count_);
     const double kth = values[capacity_ - 1];
     int below = 0;
     for (int i = 0; i < count_; ++i) below += slot_[i].d2 < kth;
@@ -113,34 +120,76 @@ class Candidates {
     bound_ = kth;
   }
 
-  // Each candidate's rank: those before it at most as far, and those after it nearer.
+  // Each candidate's rank: those before it at most as far, and those after it nearer. Each pair is
+  // compared once: the later one is behind exactly when the earlier one is at most as far.
   void rank_into(std::uint32_t* index, double* distance2) const {
-    std::array<double, kRankedAtMost> d;
+    alignas(16) std::array<double, kRankedAtMost> d;
+    alignas(16) std::array<std::int64_t, kRankedAtMost> behind{};  // (all-ones lanes: -1 per count)
     for (int i = 0; i < count_; ++i) d[i] = slot_[i].d2;
     for (int i = 0; i < count_; ++i) {
       const double di = d[i];
-      int rank = 0, j = 0;
+      std::int64_t before = 0;  // minus the number of earlier ones at most as far
+      int j = 0;
 #if defined(__SSE2__)
       const __m128d vi = _mm_set1_pd(di);
-      __m128i sum = _mm_setzero_si128();  // (comparisons give all-ones lanes: subtracting counts them)
-      for (; j + 2 <= i; j += 2) sum = _mm_sub_epi64(sum, _mm_castpd_si128(_mm_cmple_pd(_mm_loadu_pd(&d[j]), vi)));
-      for (; j < i; ++j) rank += d[j] <= di;
-      for (j = i + 1; j + 2 <= count_; j += 2)
-        sum = _mm_sub_epi64(sum, _mm_castpd_si128(_mm_cmplt_pd(_mm_loadu_pd(&d[j]), vi)));
-      rank += _mm_cvtsi128_si32(sum) + _mm_cvtsi128_si32(_mm_unpackhi_epi64(sum, sum));
-#else
-      for (; j < i; ++j) rank += d[j] <= di;
-      j = i + 1;
+      __m128i sum = _mm_setzero_si128();
+      for (; j + 2 <= i; j += 2) {
+        const __m128i le = _mm_castpd_si128(_mm_cmple_pd(_mm_load_pd(&d[j]), vi));
+        sum = _mm_add_epi64(sum, le);
+        __m128i* b = reinterpret_cast<__m128i*>(&behind[j]);
+        _mm_store_si128(b, _mm_add_epi64(_mm_load_si128(b), _mm_xor_si128(le, _mm_set1_epi64x(-1))));
+      }
+      alignas(16) std::array<std::int64_t, 2> lanes;
+      _mm_store_si128(reinterpret_cast<__m128i*>(lanes.data()), sum);
+      before = lanes[0] + lanes[1];
 #endif
-      for (; j < count_; ++j) rank += d[j] < di;
+      for (; j < i; ++j) {
+        const std::int64_t le = d[j] <= di ? -1 : 0;
+        before += le;
+        behind[j] += ~le;
+      }
+      behind[i] += before;
+    }
+    for (int i = 0; i < count_; ++i) {
+      const auto rank = static_cast<int>(-behind[i]);
       index[rank] = slot_[i].position;
-      distance2[rank] = di;
+      distance2[rank] = d[i];
     }
   }
 
   double bound_;
   int capacity_, limit_, count_ = 0;
+  std::array<Slot, kOnStack> on_stack_;
   Slot* slot_;
+};
+
+// A few nearest samples (the spacing's two), or nearest samples at any distance: sorted into place
+// as they come, so that the bound tightens at once and prunes most of the tree.
+class FewNearest {
+ public:
+  static constexpr int kAtMost = 4;
+  FewNearest(double radius2, int capacity, std::uint32_t* index, double* distance2)
+      : radius2_(radius2), capacity_(capacity), index_(index), distance2_(distance2) {}
+  double bound() const { return count_ == capacity_ ? distance2_[capacity_ - 1] : radius2_; }
+  void add_leaf(const double* d2, int count, std::uint32_t first) {
+    for (int i = 0; i < count; ++i) {
+      if (d2[i] >= bound()) continue;
+      int at = count_ < capacity_ ? count_++ : capacity_ - 1;
+      for (; at > 0 && distance2_[at - 1] > d2[i]; --at) {  // after the equal ones met before
+        distance2_[at] = distance2_[at - 1];
+        index_[at] = index_[at - 1];
+      }
+      distance2_[at] = d2[i];
+      index_[at] = first + static_cast<std::uint32_t>(i);
+    }
+  }
+  int count() const { return count_; }
+
+ private:
+  double radius2_;
+  int capacity_, count_ = 0;
+  std::uint32_t* index_;
+  double* distance2_;
 };
 
 // The nearest sample only: the first met at the smallest distance.
@@ -303,25 +352,60 @@ std::uint32_t SampleTree::nearest(const double* x, double* distance2) const {
 int SampleTree::nearest_within(const double* x, double radius2, int capacity, std::uint32_t* index,
                                double* distance2) const {
   if (capacity <= 0) return 0;
-  Candidates result(radius2, capacity);
-  index_->run(x, result);
-  const int count = result.finish(index, distance2);
+  int count;
+  if (capacity <= FewNearest::kAtMost || !std::isfinite(radius2)) {
+    FewNearest result(radius2, capacity, index, distance2);
+    index_->run(x, result);
+    count = result.count();
+  } else {
+    Candidates result(radius2, capacity);
+    index_->run(x, result);
+    count = result.finish(index, distance2);
+  }
   for (int i = 0; i < count; ++i) index[i] = index_->original[index[i]];
   return count;
 }
 
-void local_scatter(const SampleTree& tree, const std::uint32_t* ids, int count, LocalVector& mean,
-                   LocalSquare& scatter) {
-  const int d = tree.dimension();
-  mean.setZero(d);
-  for (int j = 0; j < count; ++j)
-    for (int t = 0; t < d; ++t) mean[t] += tree.point(ids[j])[t];
-  mean /= count;
-  scatter.setZero(d, d);
+namespace {
+
+// local_scatter for d known at compile time (Dim > 0) or not: the same sums in the same order.
+template <int Dim>
+void scatter_of(const SampleTree& tree, const std::uint32_t* ids, int count, LocalVector& mean, LocalSquare& scatter) {
+  const int d = Dim > 0 ? Dim : tree.dimension();
+  constexpr int kAtMost = Dim > 0 ? Dim : kMaxDimension;
+  std::array<double, kAtMost> m;
+  std::array<double, kAtMost * kAtMost> s;  // row-major lower triangle
+  std::fill_n(m.begin(), d, 0.0);
+  std::fill_n(s.begin(), d * d, 0.0);
+  for (int j = 0; j < count; ++j) {
+    const double* p = tree.point(ids[j]);
+    for (int t = 0; t < d; ++t) m[t] += p[t];
+  }
+  for (int t = 0; t < d; ++t) m[t] /= count;
   for (int j = 0; j < count; ++j) {
     const double* q = tree.point(ids[j]);
     for (int r = 0; r < d; ++r)
-      for (int c = 0; c <= r; ++c) scatter(r, c) += (q[r] - mean[r]) * (q[c] - mean[c]);
+      for (int c = 0; c <= r; ++c) s[r * d + c] += (q[r] - m[r]) * (q[c] - m[c]);
+  }
+  mean.resize(d);
+  scatter.setZero(d, d);
+  for (int r = 0; r < d; ++r) {
+    mean[r] = m[r];
+    for (int c = 0; c <= r; ++c) scatter(r, c) = s[r * d + c];
+  }
+}
+
+}  // namespace
+
+void local_scatter(const SampleTree& tree, const std::uint32_t* ids, int count, LocalVector& mean,
+                   LocalSquare& scatter) {
+  switch (tree.dimension()) {
+    case 3:
+      return scatter_of<3>(tree, ids, count, mean, scatter);
+    case 4:
+      return scatter_of<4>(tree, ids, count, mean, scatter);
+    default:
+      return scatter_of<-1>(tree, ids, count, mean, scatter);
   }
 }
 
