@@ -222,8 +222,10 @@ struct SampleTree::Index {
     std::uint32_t begin;
     double low, high;
   };
+  static constexpr int kStackDepth = 64;
   int d;
   std::size_t n;
+  int depth = 0;  // splits on the longest path from the root to a leaf
   std::vector<Node> nodes;
   std::vector<double> coordinates;      // coordinate t of the sample at position p: [t * n + p]
   std::vector<std::uint32_t> original;  // position in the tree → index of the sample
@@ -240,81 +242,97 @@ struct SampleTree::Index {
       box_low.push_back(tree.root_bbox[t].low);
       box_high.push_back(tree.root_bbox[t].high);
     }
-    copy(tree.root_node);
+    copy(tree.root_node, 0);
   }
 
-  std::uint32_t copy(const BuildTree::Node* node) {
+  std::uint32_t copy(const BuildTree::Node* node, int level) {
     const auto at = static_cast<std::uint32_t>(nodes.size());
     nodes.emplace_back();
+    depth = std::max(depth, level);
     if (node->child1 == nullptr && node->child2 == nullptr) {
       nodes[at] = {-1, static_cast<std::uint32_t>(node->node_type.lr.right),
                    static_cast<std::uint32_t>(node->node_type.lr.left), 0, 0};
       return at;
     }
-    copy(node->child1);
-    const std::uint32_t second = copy(node->child2);
+    copy(node->child1, level + 1);
+    const std::uint32_t second = copy(node->child2, level + 1);
     nodes[at] = {static_cast<int>(node->node_type.sub.divfeat), second, 0, node->node_type.sub.divlow,
                  node->node_type.sub.divhigh};
     return at;
   }
 
+  // nanoflann's search (searchLevel) without recursion: at each split the nearer child first; the
+  // other one, with its box distance grown along the split coordinate, waits on a stack and is
+  // searched after the nearer one if still within the bound: the same nodes in the same order.
   template <int Dim, class Result>
   void search(const double* x, Result& result) const {
-    std::array<double, kMaxDimension> dists{};
-    double distance2 = 0;
-    for (int t = 0; t < d; ++t) {
+    constexpr int kDims = Dim > 0 ? Dim : kMaxDimension;
+    struct Pending {
+      std::uint32_t at;
+      double box_distance2;
+      std::array<double, kDims> dists;  // per coordinate: the box distance's share
+    };
+    // One pending node per level at most: on the stack for the usual depth (about log2(n / 8)),
+    // else (very uneven samples) in a buffer grown once per thread.
+    std::array<Pending, kStackDepth> on_stack;
+    Pending* stack = on_stack.data();
+    if (depth >= kStackDepth) {
+      thread_local std::vector<Pending> deep;
+      if (static_cast<int>(deep.size()) <= depth) deep.resize(depth + 1);
+      stack = deep.data();
+    }
+    int top = 0;
+    Pending& first = stack[top++];
+    first.at = 0;
+    first.box_distance2 = 0;
+    const int dim = Dim > 0 ? Dim : d;
+    first.dists.fill(0);
+    for (int t = 0; t < dim; ++t) {
       if (x[t] < box_low[t]) {
-        dists[t] = (x[t] - box_low[t]) * (x[t] - box_low[t]);
-        distance2 += dists[t];
+        first.dists[t] = (x[t] - box_low[t]) * (x[t] - box_low[t]);
+        first.box_distance2 += first.dists[t];
       }
       if (x[t] > box_high[t]) {
-        dists[t] = (x[t] - box_high[t]) * (x[t] - box_high[t]);
-        distance2 += dists[t];
+        first.dists[t] = (x[t] - box_high[t]) * (x[t] - box_high[t]);
+        first.box_distance2 += first.dists[t];
       }
     }
-    search_node<Dim>(x, 0, distance2, dists.data(), result);
-  }
-
-  // nanoflann's searchLevel: the nearer child first, the other one if the box distance (grown
-  // along the split coordinate) is within the bound.
-  template <int Dim, class Result>
-  void search_node(const double* x, std::uint32_t at, double box_distance2, double* dists, Result& result) const {
-    const Node& node = nodes[at];
-    if (node.feature < 0) {
-      const int dim = Dim > 0 ? Dim : d;
-      const int count = static_cast<int>(node.second_or_end - node.begin);
-      std::array<double, kLeafSize> d2;
-      const double* c = coordinates.data() + node.begin;
-      for (int i = 0; i < count; ++i) {
-        double s = 0;
-        for (int t = 0; t < dim; ++t) {
-          const double diff = x[t] - c[t * n + i];
-          s += diff * diff;
+    for (bool root = true; top > 0; root = false) {
+      const Pending& p = stack[--top];
+      if (!root && !(p.box_distance2 <= result.bound())) continue;
+      std::uint32_t at = p.at;
+      const double box_distance2 = p.box_distance2;
+      std::array<double, kDims> dists = p.dists;  // (p's slot is reused by the first push)
+      for (;;) {
+        const Node& node = nodes[at];
+        if (node.feature < 0) {
+          const int count = static_cast<int>(node.second_or_end - node.begin);
+          std::array<double, kLeafSize> d2;
+          const double* c = coordinates.data() + node.begin;
+          for (int i = 0; i < count; ++i) {
+            double s = 0;  // (as nanoflann sums: from 0, coordinate by coordinate)
+            for (int t = 0; t < dim; ++t) {
+              const double diff = x[t] - c[t * n + i];
+              s += diff * diff;
+            }
+            d2[i] = s;
+          }
+          result.add_leaf(d2.data(), count, node.begin);
+          break;
         }
-        d2[i] = s;
+        const int f = node.feature;
+        const double v = x[f];
+        const bool first_is_near = (v - node.low) + (v - node.high) < 0;
+        const double edge = first_is_near ? node.high : node.low;
+        const double cut = (v - edge) * (v - edge);
+        Pending& far = stack[top++];
+        far.at = first_is_near ? node.second_or_end : at + 1;
+        far.box_distance2 = box_distance2 + cut - dists[f];
+        far.dists = dists;
+        far.dists[f] = cut;
+        at = first_is_near ? at + 1 : node.second_or_end;
       }
-      result.add_leaf(d2.data(), count, node.begin);
-      return;
     }
-    const int f = node.feature;
-    const double v = x[f];
-    std::uint32_t near, far;
-    double cut;
-    if ((v - node.low) + (v - node.high) < 0) {
-      near = at + 1;
-      far = node.second_or_end;
-      cut = (v - node.high) * (v - node.high);
-    } else {
-      near = node.second_or_end;
-      far = at + 1;
-      cut = (v - node.low) * (v - node.low);
-    }
-    search_node<Dim>(x, near, box_distance2, dists, result);
-    const double saved = dists[f];
-    box_distance2 = box_distance2 + cut - saved;
-    dists[f] = cut;
-    if (box_distance2 <= result.bound()) search_node<Dim>(x, far, box_distance2, dists, result);
-    dists[f] = saved;
   }
 
   template <class Result>
