@@ -367,19 +367,27 @@ std::uint32_t SampleTree::nearest(const double* x, double* distance2) const {
   return index_->original[result.position()];
 }
 
-int SampleTree::nearest_within(const double* x, double radius2, int capacity, std::uint32_t* index,
-                               double* distance2) const {
+int SampleTree::nearest_within_by_position(const double* x, double radius2, int capacity, std::uint32_t* position,
+                                           double* distance2) const {
   if (capacity <= 0) return 0;
   int count;
   if (capacity <= FewNearest::kAtMost || !std::isfinite(radius2)) {
-    FewNearest result(radius2, capacity, index, distance2);
+    FewNearest result(radius2, capacity, position, distance2);
     index_->run(x, result);
     count = result.count();
   } else {
     Candidates result(radius2, capacity);
     index_->run(x, result);
-    count = result.finish(index, distance2);
+    count = result.finish(position, distance2);
   }
+  return count;
+}
+
+std::uint32_t SampleTree::sample_at(std::uint32_t position) const { return index_->original[position]; }
+
+int SampleTree::nearest_within(const double* x, double radius2, int capacity, std::uint32_t* index,
+                               double* distance2) const {
+  const int count = nearest_within_by_position(x, radius2, capacity, index, distance2);
   for (int i = 0; i < count; ++i) index[i] = index_->original[index[i]];
   return count;
 }
