@@ -201,18 +201,33 @@ SampleFrames estimate_frames(const SampleTree& tree, int m, const FrameOptions& 
   // to samples with at least m + 1 others within the radius (so that outliers do not count). M
   // passes through such a gap at about half its length from every sample.
   {
-    std::vector<Edge> by_length;
-    by_length.reserve(edges.size());
+    std::vector<Edge> restricted;  // weight: the squared length
+    restricted.reserve(edges.size());
+    std::vector<double> shortest(n, std::numeric_limits<double>::infinity());
     for (const Edge& e : edges)
       if (out.within_radius[e.a] > m && out.within_radius[e.b] > m) {
         double s = 0;
         for (int t = 0; t < d; ++t)
           s += (tree.point(e.a)[t] - tree.point(e.b)[t]) * (tree.point(e.a)[t] - tree.point(e.b)[t]);
-        by_length.push_back({s, e.a, e.b});
+        restricted.push_back({s, e.a, e.b});
+        shortest[e.a] = std::min(shortest[e.a], s);
+        shortest[e.b] = std::min(shortest[e.b], s);
       }
-    sort_by_weight(by_length);
+    // Every sample's forest edges are at least as long as its shortest edge, so the longest edge
+    // is at least the longest of those: the shorter edges only join components, in any order, and
+    // Kruskal needs the rest sorted (a fraction of the edges).
+    double at_least = 0;
+    for (double s : shortest)
+      if (s < std::numeric_limits<double>::infinity()) at_least = std::max(at_least, s);
     UnionFind gaps(n);
-    for (const Edge& e : by_length)
+    std::vector<Edge> longer;
+    for (const Edge& e : restricted)
+      if (e.weight < at_least)
+        gaps.unite(e.a, e.b);
+      else
+        longer.push_back(e);
+    sort_by_weight(longer);
+    for (const Edge& e : longer)
       if (gaps.unite(e.a, e.b)) out.longest_gap = std::max(out.longest_gap, std::sqrt(e.weight));
   }
 
