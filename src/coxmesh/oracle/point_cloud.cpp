@@ -157,11 +157,12 @@ double median_spacing(const SampleTree& tree, int threads) {
   std::vector<double> nearest(n);
   constexpr std::size_t kBlock = 512;
   WorkerPool(std::max(threads, 1)).run((n + kBlock - 1) / kBlock, [&](std::size_t block, int) {
-    for (std::size_t i = block * kBlock; i < std::min(n, (block + 1) * kBlock); ++i) {
+    for (std::size_t at = block * kBlock; at < std::min(n, (block + 1) * kBlock); ++at) {
+      const std::size_t i = tree.sample_at(static_cast<std::uint32_t>(at));  // (nearby queries one after another)
       std::array<std::uint32_t, 2> index;
       std::array<double, 2> d2;
       tree.nearest_within(tree.point(i), std::numeric_limits<double>::infinity(), 2, index.data(), d2.data());
-      nearest[i] = d2[1];  // d2[0] = 0: the sample itself
+      nearest[at] = d2[1];  // d2[0] = 0: the sample itself (the median needs no order)
     }
   });
   std::nth_element(nearest.begin(), nearest.begin() + n / 2, nearest.end());

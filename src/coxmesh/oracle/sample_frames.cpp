@@ -130,7 +130,9 @@ SampleFrames estimate_frames(const SampleTree& tree, int m, const FrameOptions& 
     double* nb_d2 = d2_of[worker].data();
     LocalSquare cov(d, d);
     LocalVector mean(d);
-    for (std::size_t i = block * kBlock; i < std::min(n, (block + 1) * kBlock); ++i) {
+    for (std::size_t at = block * kBlock; at < std::min(n, (block + 1) * kBlock); ++at) {
+      // In the tree's order: consecutive queries then search the same part of the tree.
+      const std::size_t i = tree.sample_at(static_cast<std::uint32_t>(at));
       const double* p = tree.point(i);
       int count = tree.nearest_within(p, options.radius * options.radius, cap, nb, nb_d2);
       out.within_radius[i] = static_cast<std::uint16_t>(count - 1);
