@@ -40,48 +40,48 @@ struct Rows {
 using BuildTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Rows, double, std::uint32_t>,
                                                       Rows, -1, std::uint32_t>;
 
-// The candidates of one query: the samples found closer than the bound, appended in the order the
-// search meets them without a branch per sample (sorting each into place as it came, as nanoflann's
-// result sets do, cost a third of a query in mispredicted branches). The answer is the `capacity`
-// smallest by (distance, order met), which is what a sorted insertion that keeps earlier samples
-// first among equals leaves. The bound only prunes the search, so it may lag behind the true
-// capacity-th distance: it is tightened when the buffer fills.
+// The answer of one query, the `capacity` nearest closer than a radius, built so that the search
+// prunes exactly as nanoflann's sorted result set makes it prune (its pruning test is not exact in
+// floating point: with another bound it would visit other leaves and could find other samples).
+// Until `capacity` samples are found the bound is the radius: the samples are appended in the order
+// the search meets them, without a branch per sample (sorting each into place as it came cost a
+// third of a query in mispredicted branches), and ranked at the end. When a leaf brings the count to
+// `capacity` or more, the nearest `capacity` are ranked into place and the rest of the search sorts
+// each newcomer in, as nanoflann does: from then on the bound is the capacity-th distance. Either
+// way the answer is the `capacity` smallest by (distance, order met).
 class Candidates {
  public:
-  Candidates(double radius2, int capacity) : bound_(radius2), capacity_(capacity) {
-    limit_ = std::max(2 * capacity_, capacity_ + 32);
+  Candidates(double radius2, int capacity, std::uint32_t* index, double* distance2)
+      : bound_(radius2), capacity_(capacity), index_(index), distance2_(distance2) {
     slot_ = on_stack_.data();
-    if (limit_ + kLeafSize > kOnStack) {  // (only neighbourhoods larger than the defaults: grown once a thread)
-      if (static_cast<int>(scratch().size()) < limit_ + kLeafSize) scratch().resize(limit_ + kLeafSize);
+    if (capacity_ + kLeafSize > kOnStack) {  // (only neighbourhoods larger than the defaults: grown once a thread)
+      if (static_cast<int>(scratch().size()) < capacity_ + kLeafSize) scratch().resize(capacity_ + kLeafSize);
       slot_ = scratch().data();
     }
   }
   double bound() const { return bound_; }
-  /// Samples first, first + 1, … at squared distances d2[0..count) (count ≤ kLeafSize).
+  /// Positions first, first + 1, … at squared distances d2[0..count) (count ≤ kLeafSize).
   void add_leaf(const double* d2, int count, std::uint32_t first) {
+    if (sorted_) {
+      for (int i = 0; i < count; ++i)
+        if (d2[i] < bound_) insert(d2[i], first + static_cast<std::uint32_t>(i));
+      return;
+    }
     const double bound = bound_;
     for (int i = 0; i < count; ++i) {
       slot_[count_] = {d2[i], first + static_cast<std::uint32_t>(i)};
       count_ += d2[i] < bound;
     }
-    if (count_ >= limit_) keep_nearest();
-  }
-  /// The answer, nearest first, into index[0..r) (positions in the tree) and distance2[0..r).
-  int finish(std::uint32_t* index, double* distance2) {
-    if (count_ > capacity_) keep_nearest();
-    if (count_ <= kRankedAtMost) {
-      rank_into(index, distance2);
-    } else {  // (large neighbourhoods: an insertion sort, stable and without a buffer)
-      for (int i = 0; i < count_; ++i) {
-        int at = i;
-        for (; at > 0 && distance2[at - 1] > slot_[i].d2; --at) {
-          distance2[at] = distance2[at - 1];
-          index[at] = index[at - 1];
-        }
-        distance2[at] = slot_[i].d2;
-        index[at] = slot_[i].position;
-      }
+    if (count_ >= capacity_) {
+      rank_into_answer();
+      count_ = capacity_;
+      sorted_ = true;
+      bound_ = distance2_[capacity_ - 1];
     }
+  }
+  /// The answer, nearest first, in index[0..r) (positions in the tree) and distance2[0..r); returns r.
+  int finish() {
+    if (!sorted_) rank_into_answer();
     return count_;
   }
 
@@ -90,53 +90,69 @@ class Candidates {
     double d2;
     std::uint32_t position;
   };
-  static constexpr int kRankedAtMost = 48;
-  static constexpr int kOnStack = 160;  // the PCA's 65 nearest with room to spare
+  static constexpr int kOnStack = 160;  // the PCA's 65 nearest and a leaf, with room to spare
 
   static std::vector<Slot>& scratch() {
     thread_local std::vector<Slot> buffer;
     return buffer;
   }
 
-  // Keeps the `capacity` smallest by (distance, order met), in the order met; the bound becomes the
-  // largest distance kept.
-  void keep_nearest() {
-    std::array<double, kOnStack> small;
-    thread_local std::vector<double> large;
-    if (count_ > kOnStack) large.resize(count_);
-    double* values = count_ > kOnStack ? large.data() : small.data();
-    for (int i = 0; i < count_; ++i) values[i] = slot_[i].d2;
-    std::nth_element(values, values + (capacity_ - 1), values + count_);
-    const double kth = values[capacity_ - 1];
-    int below = 0;
-    for (int i = 0; i < count_; ++i) below += slot_[i].d2 < kth;
-    int ties_left = capacity_ - below;  // the earliest samples at exactly the k-th distance
-    int kept = 0;
-    for (int i = 0; i < count_; ++i) {
-      const bool keep = slot_[i].d2 < kth || (slot_[i].d2 == kth && ties_left-- > 0);
-      if (keep) slot_[kept++] = slot_[i];
+  // A newcomer nearer than the capacity-th: after the equal ones, the last one out.
+  void insert(double d2, std::uint32_t position) {
+    int at = capacity_ - 1;
+    for (; at > 0 && distance2_[at - 1] > d2; --at) {
+      distance2_[at] = distance2_[at - 1];
+      index_[at] = index_[at - 1];
     }
-    count_ = kept;
-    bound_ = kth;
+    distance2_[at] = d2;
+    index_[at] = position;
+    bound_ = distance2_[capacity_ - 1];
+  }
+
+  // The candidates' ranks by (distance, order met); those below `capacity` go to their place.
+  void rank_into_answer() {
+    if (count_ > kOnStack) {  // (very large neighbourhoods: a stable insertion sort)
+      int kept = 0;
+      for (int i = 0; i < count_; ++i) {
+        if (kept == capacity_ && !(slot_[i].d2 < distance2_[capacity_ - 1])) continue;
+        int at = kept < capacity_ ? kept++ : capacity_ - 1;
+        for (; at > 0 && distance2_[at - 1] > slot_[i].d2; --at) {
+          distance2_[at] = distance2_[at - 1];
+          index_[at] = index_[at - 1];
+        }
+        distance2_[at] = slot_[i].d2;
+        index_[at] = slot_[i].position;
+      }
+      return;
+    }
+    alignas(16) std::array<double, kOnStack> d;
+    alignas(16) std::array<std::int64_t, kOnStack> behind;  // minus the number ranked before
+    std::fill_n(behind.begin(), count_, 0);
+    for (int i = 0; i < count_; ++i) d[i] = slot_[i].d2;
+    count_behind(d.data(), behind.data(), count_);
+    for (int i = 0; i < count_; ++i) {
+      const auto rank = static_cast<int>(-behind[i]);
+      if (rank >= capacity_) continue;
+      index_[rank] = slot_[i].position;
+      distance2_[rank] = d[i];
+    }
   }
 
   // Each candidate's rank: those before it at most as far, and those after it nearer. Each pair is
-  // compared once: the later one is behind exactly when the earlier one is at most as far.
-  void rank_into(std::uint32_t* index, double* distance2) const {
-    alignas(16) std::array<double, kRankedAtMost> d;
-    alignas(16) std::array<std::int64_t, kRankedAtMost> behind{};  // (all-ones lanes: -1 per count)
-    for (int i = 0; i < count_; ++i) d[i] = slot_[i].d2;
-    for (int i = 0; i < count_; ++i) {
+  // compared once: the later one is behind exactly when the earlier one is at most as far. (Counts
+  // are kept negated: a true comparison is a lane of all ones, −1.)
+  static void count_behind(const double* d, std::int64_t* behind, int count) {
+    for (int i = 0; i < count; ++i) {
       const double di = d[i];
-      std::int64_t before = 0;  // minus the number of earlier ones at most as far
+      std::int64_t before = 0;
       int j = 0;
 #if defined(__SSE2__)
       const __m128d vi = _mm_set1_pd(di);
       __m128i sum = _mm_setzero_si128();
       for (; j + 2 <= i; j += 2) {
-        const __m128i le = _mm_castpd_si128(_mm_cmple_pd(_mm_load_pd(&d[j]), vi));
+        const __m128i le = _mm_castpd_si128(_mm_cmple_pd(_mm_load_pd(d + j), vi));
         sum = _mm_add_epi64(sum, le);
-        __m128i* b = reinterpret_cast<__m128i*>(&behind[j]);
+        __m128i* b = reinterpret_cast<__m128i*>(behind + j);
         _mm_store_si128(b, _mm_add_epi64(_mm_load_si128(b), _mm_xor_si128(le, _mm_set1_epi64x(-1))));
       }
       alignas(16) std::array<std::int64_t, 2> lanes;
@@ -150,15 +166,13 @@ class Candidates {
       }
       behind[i] += before;
     }
-    for (int i = 0; i < count_; ++i) {
-      const auto rank = static_cast<int>(-behind[i]);
-      index[rank] = slot_[i].position;
-      distance2[rank] = d[i];
-    }
   }
 
   double bound_;
-  int capacity_, limit_, count_ = 0;
+  int capacity_, count_ = 0;
+  bool sorted_ = false;
+  std::uint32_t* index_;
+  double* distance2_;
   std::array<Slot, kOnStack> on_stack_;
   Slot* slot_;
 };
@@ -376,9 +390,9 @@ int SampleTree::nearest_within_by_position(const double* x, double radius2, int 
     index_->run(x, result);
     count = result.count();
   } else {
-    Candidates result(radius2, capacity);
+    Candidates result(radius2, capacity, position, distance2);
     index_->run(x, result);
-    count = result.finish(position, distance2);
+    count = result.finish();
   }
   return count;
 }
