@@ -64,7 +64,7 @@ PointSet read_off(const std::string& path, std::string_view text) {
   std::vector<std::string_view> tokens;
   auto next_tokens = [&]() {
     while (lines.next(line)) {
-      tokens = split(line, ' ');
+      split_into(line, ' ', tokens);
       if (!tokens.empty()) return true;
     }
     return false;
@@ -121,9 +121,13 @@ PointSet read_off(const std::string& path, std::string_view text) {
     if (tokens.size() < need)
       fail(path, where(lines.number()) + ": a vertex needs " + std::to_string(need) + " numbers, found " +
                      std::to_string(tokens.size()));
-    for (int t = 0; t < d; ++t) set.points.push_back(checked(tokens[t], path, where(lines.number())));
+    auto number = [&](std::string_view token) {  // (the message's place only when it fails)
+      const std::optional<double> v = parse_double(token);
+      return v && std::isfinite(*v) ? *v : checked(token, path, where(lines.number()));
+    };
+    for (int t = 0; t < d; ++t) set.points.push_back(number(tokens[t]));
     if (normal)
-      for (int t = 0; t < d; ++t) set.normals.push_back(checked(tokens[d + t], path, where(lines.number())));
+      for (int t = 0; t < d; ++t) set.normals.push_back(number(tokens[d + t]));
   }
   if (nv == 0) fail(path, "no vertices in the file");
   return set;
