@@ -43,6 +43,8 @@ class Lines {
 
 /// The fields of a line: separated by white space (separator ' ') or by `separator`, trimmed.
 std::vector<std::string_view> split(std::string_view line, char separator);
+/// split into `out` (cleared first): no allocation once `out` is large enough.
+void split_into(std::string_view line, char separator, std::vector<std::string_view>& out);
 
 inline std::string where(std::size_t line) { return "line " + std::to_string(line); }
 

@@ -132,12 +132,12 @@ PointSet read_ply(const std::string& path, std::string_view text) {
       for (int a = 0; a < 3; ++a) set.normals.push_back(row[nxyz[a]]);
   };
   if (!binary) {
+    std::vector<std::string_view> t;  // (one vector for every line)
     for (const PlyElement& e : elements) {
       for (long long i = 0; i < e.count; ++i) {
-        std::vector<std::string_view> t;
         do {
           if (!lines.next(line)) fail(path, "the file ends inside the " + e.name + " element");
-          t = split(line, ' ');
+          split_into(line, ' ', t);
         } while (t.empty());
         if (&e != &*vertex) continue;
         if (t.size() != row.size())

@@ -2,6 +2,8 @@
 // point_reader.h); the readers of the formats are in point_text.cpp, point_ply.cpp, point_npy.cpp.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <numeric>
@@ -20,8 +22,8 @@ namespace point_files {
 
 void fail(const std::string& path, const std::string& what) { throw InputError(path + ": " + what); }
 
-std::vector<std::string_view> split(std::string_view line, char separator) {
-  std::vector<std::string_view> out;
+void split_into(std::string_view line, char separator, std::vector<std::string_view>& out) {
+  out.clear();
   if (separator == ' ') {
     std::size_t i = 0;
     while (i < line.size()) {
@@ -31,7 +33,7 @@ std::vector<std::string_view> split(std::string_view line, char separator) {
       if (j > i) out.push_back(line.substr(i, j - i));
       i = j;
     }
-    return out;
+    return;
   }
   std::size_t start = 0;
   for (;;) {
@@ -44,6 +46,11 @@ std::vector<std::string_view> split(std::string_view line, char separator) {
     start = end + 1;
   }
   if (out.size() == 1 && out[0].empty()) out.clear();  // a blank line
+}
+
+std::vector<std::string_view> split(std::string_view line, char separator) {
+  std::vector<std::string_view> out;
+  split_into(line, separator, out);
   return out;
 }
 
@@ -78,16 +85,38 @@ std::string read_file(const std::string& path) {
 std::size_t remove_duplicate_points(PointSet& set) {
   const int d = set.dimension;
   const std::size_t n = set.size();
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), 0);
   auto row = [&](std::size_t i) { return set.points.data() + i * d; };
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return std::lexicographical_compare(row(a), row(a) + d, row(b), row(b) + d);
-  });
+  // Each row against the earlier rows of its hash (an open-addressing table: sorting the rows to
+  // find equal neighbours cost more); equal as numbers, so −0 and 0 hash alike, and a later copy of
+  // a row is dropped.
+  auto hash = [&](std::size_t i) {
+    std::uint64_t h = 0x9E3779B97F4A7C15u;
+    for (int t = 0; t < d; ++t) {
+      const double v = row(i)[t] == 0 ? 0.0 : row(i)[t];
+      std::uint64_t u;
+      std::memcpy(&u, &v, sizeof u);
+      h = (h ^ u) * 0xFF51AFD7ED558CCDu;
+      h ^= h >> 32;
+    }
+    return h;
+  };
+  std::size_t size = 16;
+  while (size < 2 * n) size *= 2;
+  constexpr std::size_t kEmpty = ~std::size_t{0};
+  std::vector<std::size_t> table(size, kEmpty);
   std::vector<char> drop(n, 0);
   std::size_t removed = 0;
-  for (std::size_t i = 1; i < n; ++i)
-    if (std::equal(row(order[i]), row(order[i]) + d, row(order[i - 1]))) drop[order[i]] = 1, ++removed;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t slot = hash(i) & (size - 1);; slot = (slot + 1) & (size - 1)) {
+      if (table[slot] == kEmpty) {
+        table[slot] = i;
+        break;
+      }
+      if (std::equal(row(i), row(i) + d, row(table[slot]))) {
+        drop[i] = 1, ++removed;
+        break;
+      }
+    }
   if (!removed) return 0;
   std::size_t out = 0;
   const bool normals = !set.normals.empty();

@@ -20,8 +20,9 @@ PointSet read_rows(const std::string& path, std::string_view text, char separato
   std::string_view line;
   std::size_t width = 0, first_line = 0;
   bool first = true;
+  std::vector<std::string_view> tokens;
   while (lines.next(line)) {
-    const std::vector<std::string_view> tokens = split(line, separator);
+    split_into(line, separator, tokens);
     if (tokens.empty()) continue;
     if (first && header_allowed &&
         std::any_of(tokens.begin(), tokens.end(), [](std::string_view t) { return !parse_double(t); })) {
@@ -36,7 +37,10 @@ PointSet read_rows(const std::string& path, std::string_view text, char separato
       fail(path, where(lines.number()) + " has " + std::to_string(tokens.size()) + " numbers, " + where(first_line) +
                      " has " + std::to_string(width));
     }
-    for (std::string_view t : tokens) set.points.push_back(checked(t, path, where(lines.number())));
+    for (std::string_view t : tokens) {
+      const std::optional<double> v = parse_double(t);  // (the message's place only when it fails)
+      set.points.push_back(v && std::isfinite(*v) ? *v : checked(t, path, where(lines.number())));
+    }
   }
   if (width == 0) fail(path, "no points in the file");
   const bool with_normals = xyz_normals && width == 6 && options.dimension != 6;
@@ -60,7 +64,7 @@ PointSet read_off(const std::string& path, std::string_view text) {
   std::vector<std::string_view> tokens;
   auto next_tokens = [&]() {
     while (lines.next(line)) {
-      tokens = split(line, ' ');
+      split_into(line, ' ', tokens);
       if (!tokens.empty()) return true;
     }
     return false;
@@ -117,9 +121,13 @@ PointSet read_off(const std::string& path, std::string_view text) {
     if (tokens.size() < need)
       fail(path, where(lines.number()) + ": a vertex needs " + std::to_string(need) + " numbers, found " +
                      std::to_string(tokens.size()));
-    for (int t = 0; t < d; ++t) set.points.push_back(checked(tokens[t], path, where(lines.number())));
+    auto number = [&](std::string_view token) {  // (the message's place only when it fails)
+      const std::optional<double> v = parse_double(token);
+      return v && std::isfinite(*v) ? *v : checked(token, path, where(lines.number()));
+    };
+    for (int t = 0; t < d; ++t) set.points.push_back(number(tokens[t]));
     if (normal)
-      for (int t = 0; t < d; ++t) set.normals.push_back(checked(tokens[d + t], path, where(lines.number())));
+      for (int t = 0; t < d; ++t) set.normals.push_back(number(tokens[d + t]));
   }
   if (nv == 0) fail(path, "no vertices in the file");
   return set;

@@ -72,38 +72,53 @@ class NearestFrameFunction final : public ImplicitFunction {
 class BlendedFrameFunction final : public ImplicitFunction {
  public:
   BlendedFrameFunction(std::shared_ptr<const SampleModel> model, double width)
-      : model_(std::move(model)), inv_w2_(1 / (width * width)), reach2_(9 * width * width) {}
+      : model_(std::move(model)), inv_w2_(1 / (width * width)), reach2_(9 * width * width) {
+    // Each sample's point and frame side by side, in the tree's order: the samples a query finds
+    // are read from a few nearby rows instead of two scattered arrays.
+    const SampleFrames& fr = model_->frames;
+    const SampleTree& tree = *model_->tree;
+    const std::size_t n = tree.size(), row = static_cast<std::size_t>(fr.k + 1) * fr.d;
+    rows_.resize(n * row);
+    for (std::size_t at = 0; at < n; ++at) {
+      const std::uint32_t i = tree.sample_at(static_cast<std::uint32_t>(at));
+      std::copy(tree.point(i), tree.point(i) + fr.d, rows_.begin() + at * row);
+      std::copy(fr.frame(i), fr.frame(i) + fr.k * fr.d, rows_.begin() + at * row + fr.d);
+    }
+  }
   int ambient_dimension() const override { return model_->frames.d; }
   int codimension() const override { return model_->frames.k; }
   void evaluate(const double* x, double* value) const override {
-    const SampleFrames& fr = model_->frames;
+    const int d = model_->frames.d, k = model_->frames.k;
     const SampleTree& tree = *model_->tree;
-    std::array<std::uint32_t, kBlend> index;
+    std::array<std::uint32_t, kBlend> at;
     std::array<double, kBlend> d2;
-    int count = tree.nearest_within(x, reach2_, kBlend, index.data(), d2.data());
-    if (count == 0) count = tree.nearest_within(x, std::numeric_limits<double>::infinity(), 1, index.data(), d2.data());
+    int count = tree.nearest_within_by_position(x, reach2_, kBlend, at.data(), d2.data());
+    if (count == 0)
+      count = tree.nearest_within_by_position(x, std::numeric_limits<double>::infinity(), 1, at.data(), d2.data());
     remember_nearest(*model_, x, d2[0]);
     std::array<double, kMaxDimension> sum{};
     double total = 0;
+    const std::size_t row = static_cast<std::size_t>(k + 1) * d;
     for (int i = 0; i < count; ++i) {
       // Weights relative to the nearest sample's: the same ratios, and no underflow far away.
       const double theta = std::exp(-(d2[i] - d2[0]) * inv_w2_);
-      const double* p = tree.point(index[i]);
-      const double* u = fr.frame(index[i]);
-      for (int j = 0; j < fr.k; ++j) {
+      const double* p = rows_.data() + at[i] * row;
+      const double* u = p + d;
+      for (int j = 0; j < k; ++j) {
         double s = 0;
-        for (int t = 0; t < fr.d; ++t) s += u[j * fr.d + t] * (x[t] - p[t]);
+        for (int t = 0; t < d; ++t) s += u[j * d + t] * (x[t] - p[t]);
         sum[j] += theta * s;
       }
       total += theta;
     }
-    for (int j = 0; j < fr.k; ++j) value[j] = sum[j] / total;
+    for (int j = 0; j < k; ++j) value[j] = sum[j] / total;
   }
 
  private:
   static constexpr int kBlend = 32;
   std::shared_ptr<const SampleModel> model_;
   double inv_w2_, reach2_;
+  std::vector<double> rows_;  // by position in the tree: the sample (d), then its frame (k × d)
 };
 
 class TubeDomain final : public ImplicitFunction {
@@ -142,11 +157,12 @@ double median_spacing(const SampleTree& tree, int threads) {
   std::vector<double> nearest(n);
   constexpr std::size_t kBlock = 512;
   WorkerPool(std::max(threads, 1)).run((n + kBlock - 1) / kBlock, [&](std::size_t block, int) {
-    for (std::size_t i = block * kBlock; i < std::min(n, (block + 1) * kBlock); ++i) {
+    for (std::size_t at = block * kBlock; at < std::min(n, (block + 1) * kBlock); ++at) {
+      const std::size_t i = tree.sample_at(static_cast<std::uint32_t>(at));  // (nearby queries one after another)
       std::array<std::uint32_t, 2> index;
       std::array<double, 2> d2;
       tree.nearest_within(tree.point(i), std::numeric_limits<double>::infinity(), 2, index.data(), d2.data());
-      nearest[i] = d2[1];  // d2[0] = 0: the sample itself
+      nearest[at] = d2[1];  // d2[0] = 0: the sample itself (the median needs no order)
     }
   });
   std::nth_element(nearest.begin(), nearest.begin() + n / 2, nearest.end());

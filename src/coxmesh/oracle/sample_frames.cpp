@@ -7,7 +7,9 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <numeric>
+#include <utility>
 
 #include "coxmesh/lattice/simplex.h"
 #include "coxmesh/util/parallel_for.h"
@@ -54,24 +56,38 @@ double overlap_determinant(const double* ui, const double* uj, int k, int d) {
 }
 
 // Sorts by (weight, a, b) edges already ordered by (a, b): a stable radix sort on the weight's
-// bits (mapped so that unsigned order is the order of the doubles), 11 bits a pass.
+// bits (mapped so that unsigned order is the order of the doubles), 11 bits a pass. The counts of
+// every pass come from one read of the edges, and a pass whose digit is the same everywhere is skipped.
 void sort_by_weight(std::vector<Edge>& edges) {
   auto key = [](double w) {
     std::uint64_t u;
     std::memcpy(&u, &w, sizeof u);
     return (u >> 63) ? ~u : u | (std::uint64_t{1} << 63);
   };
-  std::vector<Edge> buffer(edges.size());
-  constexpr int kBits = 11;
-  for (int shift = 0; shift < 64; shift += kBits) {
-    std::vector<std::size_t> count((std::size_t{1} << kBits) + 1, 0);
-    for (const Edge& e : edges) ++count[((key(e.weight) >> shift) & ((1u << kBits) - 1)) + 1];
-    if (std::any_of(count.begin(), count.end(), [&](std::size_t c) { return c == edges.size(); }))
-      continue;  // one digit everywhere: nothing to do
-    for (std::size_t b = 1; b < count.size(); ++b) count[b] += count[b - 1];
-    for (const Edge& e : edges) buffer[count[(key(e.weight) >> shift) & ((1u << kBits) - 1)]++] = e;
-    edges.swap(buffer);
+  constexpr int kBits = 11, kPasses = (64 + kBits - 1) / kBits;
+  constexpr std::size_t kDigits = std::size_t{1} << kBits;
+  std::vector<std::size_t> count(kPasses * kDigits, 0);
+  for (const Edge& e : edges) {
+    const std::uint64_t k = key(e.weight);
+    for (int pass = 0; pass < kPasses; ++pass) ++count[pass * kDigits + ((k >> (pass * kBits)) & (kDigits - 1))];
   }
+  std::unique_ptr<Edge[]> buffer;  // (not value-initialised: every slot is written before it is read)
+  Edge* from = edges.data();
+  for (int pass = 0; pass < kPasses; ++pass) {
+    std::size_t* c = count.data() + pass * kDigits;
+    if (std::any_of(c, c + kDigits, [&](std::size_t n) { return n == edges.size(); })) continue;
+    if (!buffer) buffer.reset(new Edge[edges.size()]);
+    Edge* to = from == edges.data() ? buffer.get() : edges.data();
+    std::size_t start = 0;
+    for (std::size_t b = 0; b < kDigits; ++b) start += std::exchange(c[b], start);
+    const int shift = pass * kBits;
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+      const Edge& e = from[i];
+      to[c[(key(e.weight) >> shift) & (kDigits - 1)]++] = e;
+    }
+    from = to;
+  }
+  if (from != edges.data()) std::copy(from, from + edges.size(), edges.data());
 }
 
 // The orthogonal factor W Vᵀ of A = W Σ Vᵀ: the rotation (or reflection) nearest to A.
@@ -115,7 +131,9 @@ SampleFrames estimate_frames(const SampleTree& tree, int m, const FrameOptions& 
     double* nb_d2 = d2_of[worker].data();
     LocalSquare cov(d, d);
     LocalVector mean(d);
-    for (std::size_t i = block * kBlock; i < std::min(n, (block + 1) * kBlock); ++i) {
+    for (std::size_t at = block * kBlock; at < std::min(n, (block + 1) * kBlock); ++at) {
+      // In the tree's order: consecutive queries then search the same part of the tree.
+      const std::size_t i = tree.sample_at(static_cast<std::uint32_t>(at));
       const double* p = tree.point(i);
       int count = tree.nearest_within(p, options.radius * options.radius, cap, nb, nb_d2);
       out.within_radius[i] = static_cast<std::uint16_t>(count - 1);
@@ -189,28 +207,53 @@ SampleFrames estimate_frames(const SampleTree& tree, int m, const FrameOptions& 
   // to samples with at least m + 1 others within the radius (so that outliers do not count). M
   // passes through such a gap at about half its length from every sample.
   {
-    std::vector<Edge> by_length;
+    std::vector<Edge> restricted;  // weight: the squared length
+    restricted.reserve(edges.size());
+    std::vector<double> shortest(n, std::numeric_limits<double>::infinity());
     for (const Edge& e : edges)
       if (out.within_radius[e.a] > m && out.within_radius[e.b] > m) {
         double s = 0;
         for (int t = 0; t < d; ++t)
           s += (tree.point(e.a)[t] - tree.point(e.b)[t]) * (tree.point(e.a)[t] - tree.point(e.b)[t]);
-        by_length.push_back({s, e.a, e.b});
+        restricted.push_back({s, e.a, e.b});
+        shortest[e.a] = std::min(shortest[e.a], s);
+        shortest[e.b] = std::min(shortest[e.b], s);
       }
-    sort_by_weight(by_length);
+    // Every sample's forest edges are at least as long as its shortest edge, so the longest edge
+    // is at least the longest of those: the shorter edges only join components, in any order, and
+    // Kruskal needs the rest sorted (a fraction of the edges).
+    double at_least = 0;
+    for (double s : shortest)
+      if (s < std::numeric_limits<double>::infinity()) at_least = std::max(at_least, s);
     UnionFind gaps(n);
-    for (const Edge& e : by_length)
+    std::vector<Edge> longer;
+    for (const Edge& e : restricted)
+      if (e.weight < at_least)
+        gaps.unite(e.a, e.b);
+      else
+        longer.push_back(e);
+    sort_by_weight(longer);
+    for (const Edge& e : longer)
       if (gaps.unite(e.a, e.b)) out.longest_gap = std::max(out.longest_gap, std::sqrt(e.weight));
   }
 
-  // Kruskal: the minimum spanning forest, and the components.
+  // Kruskal: the minimum spanning forest, and the components. Each sample's tree neighbours in the
+  // order Kruskal joined them, in one array (a vector per sample was an allocation per sample).
   UnionFind uf(n);
-  std::vector<std::vector<std::uint32_t>> tree_adjacent(n);
+  std::vector<std::uint32_t> tree_edges;  // a, b of each joining edge
+  tree_edges.reserve(2 * n);
   for (const Edge& e : edges)
-    if (uf.unite(e.a, e.b)) {
-      tree_adjacent[e.a].push_back(e.b);
-      tree_adjacent[e.b].push_back(e.a);
+    if (uf.unite(e.a, e.b)) tree_edges.insert(tree_edges.end(), {e.a, e.b});
+  std::vector<std::uint32_t> adjacent_first(n + 1, 0), adjacent(tree_edges.size());
+  for (std::uint32_t v : tree_edges) ++adjacent_first[v + 1];
+  for (std::size_t i = 0; i < n; ++i) adjacent_first[i + 1] += adjacent_first[i];
+  {
+    std::vector<std::uint32_t> fill(adjacent_first.begin(), adjacent_first.end() - 1);
+    for (std::size_t e = 0; e < tree_edges.size(); e += 2) {
+      adjacent[fill[tree_edges[e]]++] = tree_edges[e + 1];
+      adjacent[fill[tree_edges[e + 1]]++] = tree_edges[e];
     }
+  }
   out.component.assign(n, 0);
   std::vector<std::uint32_t> id_of_root(n, 0xFFFFFFFFu);
   for (std::size_t i = 0; i < n; ++i) {
@@ -239,7 +282,8 @@ SampleFrames estimate_frames(const SampleTree& tree, int m, const FrameOptions& 
       queue.assign(1, static_cast<std::uint32_t>(root));
       for (std::size_t head = 0; head < queue.size(); ++head) {
         const std::uint32_t p = queue[head];
-        for (std::uint32_t c : tree_adjacent[p]) {
+        for (std::uint32_t j = adjacent_first[p]; j < adjacent_first[p + 1]; ++j) {
+          const std::uint32_t c = adjacent[j];
           if (seen[c]) continue;
           seen[c] = 1;
           queue.push_back(c);

@@ -1,5 +1,6 @@
 // A kd-tree over the samples of a point cloud (nanoflann), for the point-cloud oracle: the nearest
-// sample of a point, and the nearest samples within a radius. Queries allocate nothing (d ≤ 10).
+// sample of a point, and the nearest samples within a radius. Queries allocate nothing (for
+// neighbourhoods of up to 72 samples and trees up to 64 levels deep; beyond, a buffer grows once per thread).
 #pragma once
 
 #include <Eigen/Core>
@@ -15,7 +16,7 @@ namespace coxmesh {
 /// const and may run concurrently from any number of threads.
 class SampleTree {
  public:
-  /// Largest d for which queries use fixed-size buffers (above it nanoflann allocates per query).
+  /// Largest d for which the point-cloud functions keep the last query in a fixed-size memo.
   static constexpr int kFixedMaxDimension = 10;
 
   SampleTree(std::vector<double> points, int d);
@@ -34,7 +35,15 @@ class SampleTree {
   /// index[0..r), distance2[0..r); returns r. The arrays hold `capacity` entries.
   int nearest_within(const double* x, double radius2, int capacity, std::uint32_t* index, double* distance2) const;
 
-  struct Index;  // the nanoflann index for this d (fixed-size buffers when d ≤ kFixedMaxDimension)
+  /// The tree keeps the samples in an order of its own (neighbours in space are mostly neighbours
+  /// there). nearest_within answering with positions in that order (the same samples, the same
+  /// distances); sample_at(position) is the sample's index. A caller that stores its per-sample
+  /// data by position reads it from nearby memory.
+  int nearest_within_by_position(const double* x, double radius2, int capacity, std::uint32_t* position,
+                                 double* distance2) const;
+  std::uint32_t sample_at(std::uint32_t position) const;
+
+  struct Index;  // the kd-tree: nanoflann's, copied into a flat array
 
  private:
   std::vector<double> points_;
