@@ -70,8 +70,7 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
     std::size_t offset = 0;  // of its incidences
   };
   CellLevel level;
-  level.simplices = PackedKeyIndex(words);
-  level.simplices.reserve(prev.size());
+  level.simplices = PackedKeyIndex(words);            // (sized below, from batch 0: its slots are written up front)
   UninitializedHugeVector<std::uint64_t> incidences;  // (cell << 32) | facet, in discovery order
   std::vector<Chunk> buffers[3];
   for (auto& b : buffers) b.resize(chunks_per_batch);
@@ -124,6 +123,11 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
       // (the index at batch 0's rate too: it comes out slightly above the level's size)
       const std::size_t cells = std::size_t{level.simplices.size()} * prev.size() / cells0;
       if (batches > 2) level.simplices.reserve(std::min<std::size_t>(cells, PackedKeyIndex::kMaxEntries));
+    }
+    if (numbered == 0) {  // room for batch 0's keys, each new at worst
+      std::size_t occurrences = 0;
+      for (std::size_t t = 0; t < chunks_of(0); ++t) occurrences += buffers[0][t].ids.size();
+      level.simplices.reserve(std::min<std::size_t>(occurrences, PackedKeyIndex::kMaxEntries));
     }
     for (std::size_t t = 0; t < chunks_of(written); ++t) {
       Chunk& c = buffers[written % 3][t];

@@ -28,7 +28,7 @@ void require_polygons(const CellComplex& cc, const char* format) {
 }
 
 // Points (n × dim) as text lines, with an optional prefix ("v ").
-void append_points(std::string& out, const std::vector<double>& xs, int dim, const char* prefix) {
+void append_points(std::string& out, std::span<const double> xs, int dim, const char* prefix) {
   for (std::size_t v = 0; v < xs.size() / dim; ++v) {
     out += prefix;
     for (int i = 0; i < dim; ++i) {
@@ -108,7 +108,7 @@ WrittenCounts write_off(std::ostream& os, const CellComplex& cc, const Projectio
 
 WrittenCounts write_ply(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices) {
   require_polygons(cc, "PLY");
-  const std::vector<double> p3 = project_points(projection, vertex_coordinates(cc));
+  const PointArray p3 = project_vertices(projection, cc);
   const Ragged polygons = oriented_polygon_cycles(cc, p3.data());
   WrittenCounts counts;
   counts.points = p3.size() / 3;
@@ -138,7 +138,7 @@ WrittenCounts write_ply(std::ostream& os, const CellComplex& cc, const Projectio
 WrittenCounts write_obj(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices) {
   if (cc.manifold_dimension < 1)
     throw InputError("OBJ holds lines and polygons, but this is a 0-manifold: use .vtu or .cxm");
-  const std::vector<double> p3 = project_points(projection, vertex_coordinates(cc));
+  const PointArray p3 = project_vertices(projection, cc);
   WrittenCounts counts;
   counts.points = p3.size() / 3;
   std::string out = "# written by coxmesh\n";

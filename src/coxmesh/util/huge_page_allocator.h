@@ -107,7 +107,13 @@ UninitializedHugeVector<T> zeroed_huge_vector(std::size_t n) {
   UninitializedHugeVector<T> v;
   v.reserve(n);
   v.resize(n);
-  if (v.capacity() * sizeof(T) < HugePageAllocator<T>::kPage) std::fill(v.begin(), v.end(), T{});
+  if (v.capacity() * sizeof(T) < HugePageAllocator<T>::kPage) {
+    std::fill(v.begin(), v.end(), T{});
+  } else {
+#if defined(MADV_POPULATE_WRITE) && !defined(__SANITIZE_ADDRESS__)
+    madvise(v.data(), HugePageAllocator<T>::round_up(n * sizeof(T)), MADV_POPULATE_WRITE);
+#endif
+  }
   return v;
 }
 
