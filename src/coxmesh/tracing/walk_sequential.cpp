@@ -87,7 +87,7 @@ Found SequentialWalk::classify(const Simplex& tau) {
   if (x.hit) {
     if (x.domain < 0) {
       const std::uint32_t id = result_.simplices.insert_at(slot, key, h);
-      result_.points.insert(result_.points.end(), point_.begin(), point_.end());
+      append_few(result_.points, point_.data(), static_cast<std::size_t>(d_));
       domain_values_.push_back(x.domain);
       arrivals_.push_back(kNoCofacet);  // set by the walk
       return {Kind::inside, id};

@@ -127,6 +127,14 @@ std::size_t held_bytes(const V& v) {
   return std::min(capacity, HugePageAllocator<T>::round_up(v.size() * sizeof(T)));
 }
 
+/// v.insert(v.end(), p, p + n) for a few numbers: the same capacity as that insert gives (which
+/// memory reports see), without a call to copy them.
+template <class V>
+void append_few(V& v, const typename V::value_type* p, std::size_t n) {
+  if (v.capacity() - v.size() < n) v.reserve(v.size() + std::max(v.size(), n));
+  for (std::size_t i = 0; i < n; ++i) v.push_back(p[i]);
+}
+
 /// Resizes v to n elements; when v has to move, it reserves kHeadroom times its capacity. A move
 /// copies v serially, a big block's pages cost nothing until written: arrays that grow level after
 /// level while several threads wait (the parallel walk's) move less often. Where the system
