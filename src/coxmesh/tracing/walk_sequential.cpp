@@ -88,8 +88,8 @@ Found SequentialWalk::classify(const Simplex& tau) {
     if (x.domain < 0) {
       const std::uint32_t id = result_.simplices.insert_at(slot, key, h);
       append_few(result_.points, point_.data(), static_cast<std::size_t>(d_));
-      domain_values_.push_back(x.domain);
-      arrivals_.push_back(kNoCofacet);  // set by the walk
+      append_few(domain_values_, &x.domain, 1);
+      append_few(arrivals_, &kNoCofacet, 1);  // set by the walk
       return {Kind::inside, id};
     } else {
       payload = static_cast<std::uint32_t>(outside_.size());
