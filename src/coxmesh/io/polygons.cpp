@@ -194,14 +194,7 @@ void orient_polygons(Ragged& polygons, const Ragged& edges, std::uint32_t edge_c
     std::uint8_t count = 0;
   };
   std::vector<Uses> uses(edge_count);
-  // (an edge's entry is at a random place of an array much bigger than the caches: the entries of
-  // the polygons a few steps ahead are fetched ahead, here and in the breadth-first search)
-  constexpr std::uint32_t kAhead = 8;
-  const auto prefetch_uses = [&](std::uint32_t p) {
-    for (std::uint32_t e : edges[p]) __builtin_prefetch(&uses[e]);
-  };
   for (std::uint32_t p = first; p < n; ++p) {
-    if (p + kAhead < n) prefetch_uses(p + kAhead);
     const auto cycle = polygons[p];
     const auto cycle_edges = edges[p];
     for (std::size_t i = 0; i < cycle.size(); ++i) {
@@ -225,7 +218,6 @@ void orient_polygons(Ragged& polygons, const Ragged& edges, std::uint32_t edge_c
     component.assign(1, start);
     for (std::size_t head = 0; head < component.size(); ++head) {
       const std::uint32_t p = component[head];
-      if (head + kAhead < component.size()) prefetch_uses(component[head + kAhead]);
       for (std::uint32_t e : edges[p]) {
         const Uses& u = uses[e];
         if (u.count != 2) continue;
