@@ -32,13 +32,14 @@ TraceResult SequentialWalk::finish() {
 void SequentialWalk::walk() {
   Simplex tau;
   CofaceEnumerator cofacets;
-  // The cofacets of τ in a pipeline: the oracle's guess of μ's other transverse facet is made and
-  // its slot in S fetched, and μ is classified two cofacets later (the tests in the same order as
-  // other_transverse_facet's: pivot_exit only reads the oracle's values). A look-up in S is at a
-  // random place of a table much bigger than the caches: fetched ahead, it waits less (whole
-  // command on S² at 0.56 M simplices: 2–4 % less CPU time, docs/benchmarks.md).
-  constexpr int kPipeline = 3;
-  Pending pending[kPipeline];
+  // The cofacets of τ in a pipeline of three steps: μ is taken (and the oracle told that pivot_exit
+  // will read its new vertex v), one cofacet later the oracle guesses μ's other transverse facet (and
+  // its slot in S is fetched), two cofacets later still μ is classified. The oracle and S are asked
+  // the same things in the same order as by other_transverse_facet (pivot_exit only reads values,
+  // of v, a vertex of every facet tested after it). Both look-ups are at random places of tables
+  // much bigger than the caches: fetched ahead, they wait less (docs/benchmarks.md).
+  constexpr int kGuessLag = 1, kTestLag = 2, kRing = kGuessLag + kTestLag + 1;
+  Pending pending[kRing];
   for (; head_ < result_.simplices.size(); ++head_) {
     if (head_ >= level_end_) {  // a breadth-first level starts: handed to the oracle at once
       if (!start_level()) return;
@@ -47,37 +48,43 @@ void SequentialWalk::walk() {
     tau = result_.simplices.simplex(head_, d_);
     const bool pivots = oracle_.pivot_enter(tau);
     cofacets.reset(tau, k_ + 1);
-    int guessed = 0, finished = 0;  // pending[i % kPipeline] for finished ≤ i < guessed
-    while (const Simplex* cofacet = cofacets.next()) {
-      if (!guess_other_facet(tau, *cofacet, pivots, pending[guessed % kPipeline])) continue;  // τ's arrival
-      if (++guessed - finished == kPipeline) finish_cofacet(pending[finished++ % kPipeline]);
-    }
-    while (finished < guessed) finish_cofacet(pending[finished++ % kPipeline]);
+    int taken = 0, guessed = 0, finished = 0;  // pending[i % kRing] for finished ≤ i < taken
+    const auto advance = [&](int guess_lag, int test_lag) {
+      if (taken - guessed > guess_lag) guess_other_facet(pivots, pending[guessed++ % kRing]);
+      if (guessed - finished > test_lag) finish_cofacet(pending[finished++ % kRing]);
+    };
+    while (const Simplex* cofacet = cofacets.next())
+      if (take_cofacet(tau, *cofacet, pivots, pending[taken % kRing])) ++taken, advance(kGuessLag, kTestLag);
+    while (finished < taken) advance(0, 0);
   }
 }
 
-// other_transverse_facet (walk_common.h) up to its first test: false when μ is τ's arrival.
-bool SequentialWalk::guess_other_facet(const Simplex& tau, const Simplex& mu, bool pivots, Pending& p) {
+// other_transverse_facet (walk_common.h), first step: false when μ is τ's arrival.
+bool SequentialWalk::take_cofacet(const Simplex& tau, const Simplex& mu, bool pivots, Pending& p) {
   p.entry = extra_vertex_index(tau, mu);
-  std::int32_t v[kMaxDimension];
-  mu.vertex(p.entry, v);
+  mu.vertex(p.entry, p.v);
   // (τ's key is fetched per cofacet: classify appends to S, which may move the keys)
   const std::uint64_t arrival = arrivals_[head_];
-  if (arrival != kNoCofacet && cofacet_code(v, result_.simplices.key(head_), d_) == arrival) return false;
+  if (arrival != kNoCofacet && cofacet_code(p.v, result_.simplices.key(head_), d_) == arrival) return false;
   p.mu = mu;
-  p.guess = -1;
-  if (pivots)
-    if (const int g = oracle_.pivot_exit(v); g >= 0) {
-      p.guess = g < p.entry ? g : g + 1;
-      p.facet = facet_without(mu, p.guess);
-      pack(p.facet, p.key);
-      p.hash = hash_words(p.key, packed_words(d_));
-      result_.simplices.prefetch(p.hash);
-    }
+  if (pivots) oracle_.prefetch_pivot(p.v);
   return true;
 }
 
-// The rest of other_transverse_facet for a pending μ, then what the walk does with the facet found.
+// Second step: the oracle's guess, packed and hashed, its slot in S fetched.
+void SequentialWalk::guess_other_facet(bool pivots, Pending& p) {
+  p.guess = -1;
+  if (!pivots) return;
+  if (const int g = oracle_.pivot_exit(p.v); g >= 0) {
+    p.guess = g < p.entry ? g : g + 1;
+    p.facet = facet_without(p.mu, p.guess);
+    pack(p.facet, p.key);
+    p.hash = hash_words(p.key, packed_words(d_));
+    result_.simplices.prefetch(p.hash);
+  }
+}
+
+// Last step: the guess tested, then every other facet, then what the walk does with the one found.
 void SequentialWalk::finish_cofacet(const Pending& p) {
   const std::uint32_t known = result_.simplices.size();
   Found f{Kind::miss, 0};
