@@ -94,7 +94,7 @@ Ragged polygon_cycles(const CellComplex& cc, Ragged* cycle_edges) {
   Ragged cycles;
   const IndexArray ends = edge_end_pairs(cc);
   const std::uint32_t n1 = cell_count(cc, CellKind::interior, 1);
-  std::vector<std::uint32_t> edges, cycle, cycle_edge, first_end, second_end;
+  std::vector<std::uint32_t> list, cycle, cycle_edge, first_end, second_end;
   std::vector<std::uint8_t> used;
   std::size_t polygons = 0, corners = 0;  // (sizes known: the arrays grow once)
   for (CellKind kind : {CellKind::interior, CellKind::boundary})
@@ -105,8 +105,11 @@ Ragged polygon_cycles(const CellComplex& cc, Ragged* cycle_edges) {
   for (CellKind kind : {CellKind::interior, CellKind::boundary}) {
     const CellLevel* level = cell_level(cc, kind, 2);
     if (!level) continue;
+    // (an interior polygon with no boundary edge lists its edges as they are: no copy)
+    const bool as_listed = kind == CellKind::interior && level->boundary_facet.empty();
     for (std::uint32_t c = 0; c < level->size(); ++c) {
-      facets_of(*level, kind, c, n1, edges);
+      if (!as_listed) facets_of(*level, kind, c, n1, list);
+      const std::span<const std::uint32_t> edges = as_listed ? level->facets(c) : std::span<const std::uint32_t>(list);
       const std::size_t n = edges.size();
       cycle.clear();
       bool closed = n >= 3;

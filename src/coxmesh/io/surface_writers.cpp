@@ -1,6 +1,7 @@
 // OFF / nOFF, PLY and OBJ writers: the polygonal 2-skeleton (surfaces); see mesh_formats.h.
 #include <bit>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -121,17 +122,24 @@ WrittenCounts write_ply(std::ostream& os, const CellComplex& cc, const Projectio
                              std::to_string(counts.cells) + "\nproperty list uchar int vertex_indices\nend_header\n";
   os.write(header.data(), static_cast<std::streamsize>(header.size()));
   os.write(reinterpret_cast<const char*>(p3.data()), static_cast<std::streamsize>(p3.size() * sizeof(double)));
-  std::string out;
+  // Faces into a fixed buffer (a face takes at most 1 + 4 · 255 bytes), written out when nearly full.
+  constexpr std::size_t kBuffer = std::size_t{1} << 20, kLargestFace = 1 + 4 * 255;
+  std::vector<char> buffer(kBuffer);
+  std::size_t used = 0;
   for_each_face(polygons, simplices, [&](std::span<const std::uint32_t> cycle) {
     if (cycle.size() > 255) throw InputError("PLY: a polygon has more than 255 vertices");
-    out += static_cast<char>(cycle.size());
+    if (used + kLargestFace > kBuffer) {
+      os.write(buffer.data(), static_cast<std::streamsize>(used));
+      used = 0;
+    }
+    buffer[used++] = static_cast<char>(cycle.size());
     for (std::uint32_t v : cycle) {
       const std::int32_t i = static_cast<std::int32_t>(v);
-      out.append(reinterpret_cast<const char*>(&i), 4);
+      std::memcpy(buffer.data() + used, &i, 4);
+      used += 4;
     }
-    flush_if_large(os, out);
   });
-  os.write(out.data(), static_cast<std::streamsize>(out.size()));
+  os.write(buffer.data(), static_cast<std::streamsize>(used));
   return counts;
 }
 
