@@ -110,6 +110,9 @@ UninitializedHugeVector<T> zeroed_huge_vector(std::size_t n) {
   if (v.capacity() * sizeof(T) < HugePageAllocator<T>::kPage) {
     std::fill(v.begin(), v.end(), T{});
   } else {
+    // A hash table is read at random before it is written: each page would fault twice (the shared
+    // zero page, then a page of its own), at about 2.5 times the cost of writing it up front here
+    // (docs/benchmarks.md, "Surfaces end to end"). Kernels before 5.14 ignore the advice.
 #if defined(MADV_POPULATE_WRITE) && !defined(__SANITIZE_ADDRESS__)
     madvise(v.data(), HugePageAllocator<T>::round_up(n * sizeof(T)), MADV_POPULATE_WRITE);
 #endif
