@@ -71,7 +71,7 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
   };
   CellLevel level;
   level.simplices = PackedKeyIndex(words);
-  level.simplices.reserve(prev.size());
+  level.simplices.reserve_keys(prev.size());  // (its table is sized below, from batch 0: its pages are written at once)
   UninitializedHugeVector<std::uint64_t> incidences;  // (cell << 32) | facet, in discovery order
   std::vector<Chunk> buffers[3];
   for (auto& b : buffers) b.resize(chunks_per_batch);
@@ -92,7 +92,7 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
       cofaces.reset(prev.simplices.simplex(c, d), l);
       while (const Simplex* nu = cofaces.next()) {
         pack(*nu, key);
-        out.keys.insert(out.keys.end(), key, key + words);
+        for (int i = 0; i < words; ++i) out.keys.push_back(key[i]);  // (a few words: no call to copy them)
         out.hashes.push_back(hash_words(key, words));
         out.facets.push_back(c);
       }
@@ -124,6 +124,11 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
       // (the index at batch 0's rate too: it comes out slightly above the level's size)
       const std::size_t cells = std::size_t{level.simplices.size()} * prev.size() / cells0;
       if (batches > 2) level.simplices.reserve(std::min<std::size_t>(cells, PackedKeyIndex::kMaxEntries));
+    }
+    if (numbered == 0) {  // room for batch 0's keys, each new at worst
+      std::size_t occurrences = 0;
+      for (std::size_t t = 0; t < chunks_of(0); ++t) occurrences += buffers[0][t].ids.size();
+      level.simplices.reserve_table(std::min<std::size_t>(occurrences, PackedKeyIndex::kMaxEntries));
     }
     for (std::size_t t = 0; t < chunks_of(written); ++t) {
       Chunk& c = buffers[written % 3][t];

@@ -30,7 +30,9 @@ std::string check_closed(const CellComplex& cc) {
   };
   // The end points of this kind's edges, two per edge in one array: a polygon's vertices are then
   // found with one scattered read per edge, not two (the edge's list, then its ids).
-  std::vector<std::size_t> end_points;
+  // (vertices come first in the global numbering: their ids fit 32 bits; every edge's pair is
+  // written before it is read, so the array is not zeroed)
+  IndexArray end_points;
   constexpr std::uint32_t kAhead = 8;  // (the polygons whose end points are fetched ahead)
   for (int kind = 0; kind < 2; ++kind) {
     const auto& levels = kind ? cc.boundary : cc.interior;
@@ -41,7 +43,8 @@ std::string check_closed(const CellComplex& cc) {
           std::size_t ends[2] = {0, 0}, n = 0;
           cells.for_each_facet(1, kind == 1, c, [&](std::size_t v) { ends[n++ % 2] = v; });
           if (n == 2 && ends[0] != ends[1]) {
-            end_points[2 * std::size_t{c}] = ends[0], end_points[2 * std::size_t{c} + 1] = ends[1];
+            end_points[2 * std::size_t{c}] = static_cast<std::uint32_t>(ends[0]);
+            end_points[2 * std::size_t{c} + 1] = static_cast<std::uint32_t>(ends[1]);
             continue;
           }
           const std::string edge = kind ? "a boundary edge cell" : "an edge cell";

@@ -37,11 +37,19 @@ class FdBuffer final : public std::streambuf {
     return traits_type::not_eof(c);
   }
   int sync() override { return flush_buffer() ? 0 : -1; }
+  // A block at least as big as the buffer goes to the file as it is, not through the buffer.
+  std::streamsize xsputn(const char* s, std::streamsize n) override {
+    if (n < static_cast<std::streamsize>(buffer_.size())) return std::streambuf::xsputn(s, n);
+    return flush_buffer() && write_all(s, static_cast<std::size_t>(n)) ? n : 0;
+  }
 
  private:
   bool flush_buffer() {
-    const char* p = pbase();
-    std::size_t n = static_cast<std::size_t>(pptr() - pbase());
+    if (!write_all(pbase(), static_cast<std::size_t>(pptr() - pbase()))) return false;
+    setp(buffer_.data(), buffer_.data() + buffer_.size());
+    return true;
+  }
+  bool write_all(const char* p, std::size_t n) {
     while (n > 0) {
       const ssize_t w = ::write(fd_, p, n);
       if (w < 0) {
@@ -52,7 +60,6 @@ class FdBuffer final : public std::streambuf {
       p += w;
       n -= static_cast<std::size_t>(w);
     }
-    setp(buffer_.data(), buffer_.data() + buffer_.size());
     return true;
   }
 

@@ -61,14 +61,41 @@ Ragged edge_ends(const CellComplex& cc, CellKind kind) {
 
 namespace {
 
+// The two end points (global vertex ids) of every 1-cell in the global edge numbering (interior,
+// then boundary), in the order of edge_ends; both kNone when the cell does not have exactly two.
+IndexArray edge_end_pairs(const CellComplex& cc) {
+  const std::uint32_t n0 = cell_count(cc, CellKind::interior, 0);
+  const std::uint32_t n1 = cell_count(cc, CellKind::interior, 1), nb1 = cell_count(cc, CellKind::boundary, 1);
+  IndexArray pairs(2 * (std::size_t{n1} + nb1));  // (written in full below)
+  std::uint32_t* out = pairs.data();
+  for (CellKind kind : {CellKind::interior, CellKind::boundary}) {
+    const CellLevel* level = cell_level(cc, kind, 1);
+    if (!level) continue;
+    const bool boundary = kind == CellKind::boundary;
+    const bool closing = !boundary && !level->boundary_facet.empty();
+    const std::uint32_t shift = boundary ? n0 : 0;
+    for (std::uint32_t c = 0; c < level->size(); ++c, out += 2) {
+      const auto facets = level->facets(c);
+      const bool extra = closing && level->boundary_facet[c] != CellLevel::kNone;
+      if (facets.size() + (extra ? 1 : 0) != 2) {
+        out[0] = out[1] = CellLevel::kNone;
+      } else {
+        out[0] = shift + facets[0];
+        out[1] = extra ? n0 + level->boundary_facet[c] : shift + facets[1];
+      }
+    }
+  }
+  return pairs;
+}
+
 // polygon_cycles, and with `cycle_edges` the global id of each cycle's edges too: edge i joins
 // vertices i and i + 1 (the last joins the last vertex and the first).
 Ragged polygon_cycles(const CellComplex& cc, Ragged* cycle_edges) {
   Ragged cycles;
-  const Ragged ends[2] = {edge_ends(cc, CellKind::interior), edge_ends(cc, CellKind::boundary)};
-  const std::uint32_t n1 = ends[0].size();
-  std::vector<std::uint32_t> edges, cycle, cycle_edge;
-  std::vector<bool> used;
+  const IndexArray ends = edge_end_pairs(cc);
+  const std::uint32_t n1 = cell_count(cc, CellKind::interior, 1);
+  std::vector<std::uint32_t> list, cycle, cycle_edge, first_end, second_end;
+  std::vector<std::uint8_t> used;
   std::size_t polygons = 0, corners = 0;  // (sizes known: the arrays grow once)
   for (CellKind kind : {CellKind::interior, CellKind::boundary})
     if (const CellLevel* level = cell_level(cc, kind, 2))
@@ -78,37 +105,39 @@ Ragged polygon_cycles(const CellComplex& cc, Ragged* cycle_edges) {
   for (CellKind kind : {CellKind::interior, CellKind::boundary}) {
     const CellLevel* level = cell_level(cc, kind, 2);
     if (!level) continue;
+    // (an interior polygon with no boundary edge lists its edges as they are: no copy)
+    const bool as_listed = kind == CellKind::interior && level->boundary_facet.empty();
     for (std::uint32_t c = 0; c < level->size(); ++c) {
-      facets_of(*level, kind, c, n1, edges);
+      if (!as_listed) facets_of(*level, kind, c, n1, list);
+      const std::span<const std::uint32_t> edges = as_listed ? level->facets(c) : std::span<const std::uint32_t>(list);
+      const std::size_t n = edges.size();
       cycle.clear();
-      bool closed = edges.size() >= 3;
-      auto ends_of = [&](std::uint32_t e) { return e < n1 ? ends[0][e] : ends[1][e - n1]; };
-      for (std::uint32_t e : edges) closed = closed && ends_of(e).size() == 2;
+      bool closed = n >= 3;
+      first_end.resize(n), second_end.resize(n);
+      for (std::size_t i = 0; i < n && closed; ++i) {
+        first_end[i] = ends[2 * std::size_t{edges[i]}], second_end[i] = ends[2 * std::size_t{edges[i]} + 1];
+        closed = first_end[i] != CellLevel::kNone;
+      }
       if (closed) {
         // Walk: from the second end of the first edge, repeatedly take the unused edge at the
         // current vertex. A convex polygon has few edges, so the quadratic search is cheap.
-        used.assign(edges.size(), false);
-        used[0] = true;
-        const auto first = ends_of(edges[0]);
-        cycle.push_back(first[0]);
+        used.assign(n, 0);
+        used[0] = 1;
+        cycle.push_back(first_end[0]);
         cycle_edge.assign(1, edges[0]);
-        std::uint32_t current = first[1];
+        std::uint32_t current = second_end[0];
         while (current != cycle.front() && closed) {
           cycle.push_back(current);
           closed = false;
-          for (std::size_t i = 0; i < edges.size() && !closed; ++i) {
-            if (used[i]) continue;
-            const auto e = ends_of(edges[i]);
-            if (e[0] == current || e[1] == current) {
-              used[i] = true;
-              cycle_edge.push_back(edges[i]);
-              current = e[0] == current ? e[1] : e[0];
-              closed = true;
-            }
+          for (std::size_t i = 0; i < n && !closed; ++i) {
+            if (used[i] || (first_end[i] != current && second_end[i] != current)) continue;
+            used[i] = 1;
+            cycle_edge.push_back(edges[i]);
+            current = first_end[i] == current ? second_end[i] : first_end[i];
+            closed = true;
           }
         }
-        closed =
-            closed && cycle.size() == edges.size() && std::all_of(used.begin(), used.end(), [](bool u) { return u; });
+        closed = closed && cycle.size() == n && std::all_of(used.begin(), used.end(), [](std::uint8_t u) { return u; });
       }
       if (!closed) cycle.clear(), cycle_edge.clear();
       cycles.push(cycle);
@@ -172,7 +201,7 @@ void orient_polygons(Ragged& polygons, const Ragged& edges, std::uint32_t edge_c
     const auto cycle = polygons[p];
     const auto cycle_edges = edges[p];
     for (std::size_t i = 0; i < cycle.size(); ++i) {
-      const std::uint32_t a = cycle[i], b = cycle[(i + 1) % cycle.size()];
+      const std::uint32_t a = cycle[i], b = cycle[i + 1 < cycle.size() ? i + 1 : 0];
       Uses& u = uses[cycle_edges[i]];
       if (u.count < 2) {
         u.poly[u.count] = p;
@@ -185,15 +214,13 @@ void orient_polygons(Ragged& polygons, const Ragged& edges, std::uint32_t edge_c
     std::reverse(polygons.items.begin() + polygons.offsets[p] + 1, polygons.items.begin() + polygons.offsets[p + 1]);
   };
   std::vector<std::uint8_t> state(n, 0);  // 0 unvisited, 1 kept, 2 reversed
-  std::vector<std::uint32_t> queue, component;
+  std::vector<std::uint32_t> component;   // breadth-first queue, then the component
   for (std::uint32_t start = first; start < n; ++start) {
     if (state[start] || polygons[start].empty()) continue;
     state[start] = 1;
-    queue.assign(1, start);
-    component.clear();
-    for (std::size_t head = 0; head < queue.size(); ++head) {
-      const std::uint32_t p = queue[head];
-      component.push_back(p);
+    component.assign(1, start);
+    for (std::size_t head = 0; head < component.size(); ++head) {
+      const std::uint32_t p = component[head];
       for (std::uint32_t e : edges[p]) {
         const Uses& u = uses[e];
         if (u.count != 2) continue;
@@ -203,20 +230,22 @@ void orient_polygons(Ragged& polygons, const Ragged& edges, std::uint32_t edge_c
         // Directions as stored; a reversed polygon has its direction flipped. Opposite is wanted.
         const bool p_forward = u.forward[self] != (state[p] == 2);
         state[q] = p_forward == u.forward[other] ? 2 : 1;
-        queue.push_back(q);
+        component.push_back(q);
       }
     }
     bool flip_all = false;
     if (points3) {  // signed volume of the cone from the origin over the component's fan triangles
       double volume = 0;
-      std::vector<std::uint32_t> cycle;
       for (std::uint32_t p : component) {
-        cycle.assign(polygons[p].begin(), polygons[p].end());
-        if (state[p] == 2) std::reverse(cycle.begin() + 1, cycle.end());
+        // The fan of the cycle as it will be written: a reversed one is read as c0, c(k−1), …, c1.
+        const auto cycle = polygons[p];
+        const std::size_t k = cycle.size();
+        const bool reversed = state[p] == 2;
+        const auto at = [&](std::size_t i) { return cycle[reversed && i ? k - i : i]; };
         const double* a = points3 + 3 * static_cast<std::size_t>(cycle[0]);
-        for (std::size_t i = 1; i + 1 < cycle.size(); ++i) {
-          const double* b = points3 + 3 * static_cast<std::size_t>(cycle[i]);
-          const double* c = points3 + 3 * static_cast<std::size_t>(cycle[i + 1]);
+        for (std::size_t i = 1; i + 1 < k; ++i) {
+          const double* b = points3 + 3 * static_cast<std::size_t>(at(i));
+          const double* c = points3 + 3 * static_cast<std::size_t>(at(i + 1));
           volume += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
                     a[2] * (b[0] * c[1] - b[1] * c[0]);
         }

@@ -29,7 +29,11 @@ struct Ragged {
     return {items.data() + offsets[i], items.data() + offsets[i + 1]};
   }
   void push(std::span<const std::uint32_t> list) {
-    items.insert(items.end(), list.begin(), list.end());
+    if (list.size() <= 8) {  // (most lists are a few ids: no call to copy them)
+      for (std::uint32_t id : list) items.push_back(id);
+    } else {
+      items.insert(items.end(), list.begin(), list.end());
+    }
     offsets.push_back(static_cast<std::uint32_t>(items.size()));
   }
 };

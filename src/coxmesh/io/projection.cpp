@@ -144,10 +144,12 @@ Projection make_projection(const std::string& spec, int d, std::span<const doubl
   return p;
 }
 
-std::vector<double> project_points(const Projection& p, std::span<const double> points) {
+namespace {
+
+// The image of each of the n points of R^d in `points` into out[0 .. 3n).
+void project_rows(const Projection& p, std::span<const double> points, double* out) {
   const int d = p.d;
   const std::size_t n = points.size() / d;
-  std::vector<double> out(3 * n);
   std::vector<double> x(d);
   for (std::size_t v = 0; v < n; ++v) {
     for (int i = 0; i < d; ++i) x[i] = points[v * d + i] - p.center[i];
@@ -167,6 +169,22 @@ std::vector<double> project_points(const Projection& p, std::span<const double> 
       out[3 * v + r] = scale * s;
     }
   }
+}
+
+}  // namespace
+
+std::vector<double> project_points(const Projection& p, std::span<const double> points) {
+  std::vector<double> out(3 * (points.size() / p.d));
+  project_rows(p, points, out.data());
+  return out;
+}
+
+PointArray project_vertices(const Projection& p, const CellComplex& cc) {
+  // (written in full below: no zeros first, and no copy of the vertices in the global numbering)
+  const std::size_t interior = cc.vertices.size() / p.d, boundary = cc.boundary_vertices.size() / p.d;
+  PointArray out(3 * (interior + boundary));
+  project_rows(p, cc.vertices, out.data());
+  project_rows(p, cc.boundary_vertices, out.data() + 3 * interior);
   return out;
 }
 

@@ -7,6 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "coxmesh/arrays.h"
+#include "coxmesh/cell_complex/cell_complex.h"
+
 namespace coxmesh {
 
 /// x ↦ P·(x − center), P a 3 × d matrix (row-major), center a point of R^d; stereographic:
@@ -48,5 +51,9 @@ Projection make_projection(const std::string& spec, int d, std::span<const doubl
 ///   Throws InputError (stereographic) when a point is not strictly on the far side of the pole's
 ///   tangent hyperplane (it has no image; give another pole).
 std::vector<double> project_points(const Projection& projection, std::span<const double> points);
+
+/// project_points of the complex's vertices in the global numbering (polygons.h: interior, then
+/// boundary), read where they are.
+PointArray project_vertices(const Projection& projection, const CellComplex& cc);
 
 }  // namespace coxmesh

@@ -1,6 +1,7 @@
 // OFF / nOFF, PLY and OBJ writers: the polygonal 2-skeleton (surfaces); see mesh_formats.h.
 #include <bit>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -28,7 +29,7 @@ void require_polygons(const CellComplex& cc, const char* format) {
 }
 
 // Points (n × dim) as text lines, with an optional prefix ("v ").
-void append_points(std::string& out, const std::vector<double>& xs, int dim, const char* prefix) {
+void append_points(std::string& out, std::span<const double> xs, int dim, const char* prefix) {
   for (std::size_t v = 0; v < xs.size() / dim; ++v) {
     out += prefix;
     for (int i = 0; i < dim; ++i) {
@@ -108,7 +109,7 @@ WrittenCounts write_off(std::ostream& os, const CellComplex& cc, const Projectio
 
 WrittenCounts write_ply(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices) {
   require_polygons(cc, "PLY");
-  const std::vector<double> p3 = project_points(projection, vertex_coordinates(cc));
+  const PointArray p3 = project_vertices(projection, cc);
   const Ragged polygons = oriented_polygon_cycles(cc, p3.data());
   WrittenCounts counts;
   counts.points = p3.size() / 3;
@@ -121,24 +122,31 @@ WrittenCounts write_ply(std::ostream& os, const CellComplex& cc, const Projectio
                              std::to_string(counts.cells) + "\nproperty list uchar int vertex_indices\nend_header\n";
   os.write(header.data(), static_cast<std::streamsize>(header.size()));
   os.write(reinterpret_cast<const char*>(p3.data()), static_cast<std::streamsize>(p3.size() * sizeof(double)));
-  std::string out;
+  // Faces into a fixed buffer (a face takes at most 1 + 4 · 255 bytes), written out when nearly full.
+  constexpr std::size_t kBuffer = std::size_t{1} << 20, kLargestFace = 1 + 4 * 255;
+  std::vector<char> buffer(kBuffer);
+  std::size_t used = 0;
   for_each_face(polygons, simplices, [&](std::span<const std::uint32_t> cycle) {
     if (cycle.size() > 255) throw InputError("PLY: a polygon has more than 255 vertices");
-    out += static_cast<char>(cycle.size());
+    if (used + kLargestFace > kBuffer) {
+      os.write(buffer.data(), static_cast<std::streamsize>(used));
+      used = 0;
+    }
+    buffer[used++] = static_cast<char>(cycle.size());
     for (std::uint32_t v : cycle) {
       const std::int32_t i = static_cast<std::int32_t>(v);
-      out.append(reinterpret_cast<const char*>(&i), 4);
+      std::memcpy(buffer.data() + used, &i, 4);
+      used += 4;
     }
-    flush_if_large(os, out);
   });
-  os.write(out.data(), static_cast<std::streamsize>(out.size()));
+  os.write(buffer.data(), static_cast<std::streamsize>(used));
   return counts;
 }
 
 WrittenCounts write_obj(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices) {
   if (cc.manifold_dimension < 1)
     throw InputError("OBJ holds lines and polygons, but this is a 0-manifold: use .vtu or .cxm");
-  const std::vector<double> p3 = project_points(projection, vertex_coordinates(cc));
+  const PointArray p3 = project_vertices(projection, cc);
   WrittenCounts counts;
   counts.points = p3.size() / 3;
   std::string out = "# written by coxmesh\n";

@@ -93,8 +93,10 @@ WrittenCounts write_mesh(const std::string& path, MeshFormat format, const CellC
   // The projection is resolved first, so that a spec that does not fit d fails before the file exists.
   const bool n_dimensional =
       format == MeshFormat::noff || (format == MeshFormat::off && d != 3 && options.projection.empty());
-  const Projection projection = make_projection(
-      options.projection, d, n_dimensional ? std::span<const double>{} : vertex_coordinates(cc), options.pole);
+  // (only "pca" and "stereographic" look at the points: no copy of them for the others)
+  const bool fitted = !n_dimensional && (options.projection == "pca" || options.projection == "stereographic");
+  const Projection projection =
+      make_projection(options.projection, d, fitted ? vertex_coordinates(cc) : std::vector<double>{}, options.pole);
   WrittenCounts counts;
   write_file_atomically(path, [&](std::ostream& os) {
     switch (format) {

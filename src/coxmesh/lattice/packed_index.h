@@ -66,7 +66,7 @@ class PackedKeyIndex {
     COXMESH_PARANOID_ASSERT(find(key, hash) == kAbsent);
     if (size_ >= kMaxEntries) throw InputError("more than 2^31 - 1 entries in one index");
     const std::uint32_t id = size_++;
-    keys_.insert(keys_.end(), key, key + words_);
+    append_few(keys_, key, static_cast<std::size_t>(words_));
     slots_[slot] = LinearProbe::entry(hash, id + 1);
     if (2 * static_cast<std::size_t>(size_) > slots_.size()) rehash(2 * slots_.size());  // load ≤ 1/2
     return id;
@@ -202,8 +202,16 @@ class PackedKeyIndex {
   /// Bytes held (keys and slots), for memory reports.
   std::size_t bytes() const { return held_bytes(keys_) + held_bytes(slots_); }
   void reserve(std::size_t n) {
+    reserve_keys(n);
+    reserve_table(n);
+  }
+  /// Room for n keys, without a table for them.
+  void reserve_keys(std::size_t n) {
     if (n > kMaxEntries) throw InputError("more than 2^31 - 1 entries in one index");
     keys_.reserve(n * words_);
+  }
+  /// A table for n keys (load ≤ 1/2), without room for the keys themselves.
+  void reserve_table(std::size_t n) {
     std::size_t cap = slots_.size();
     while (cap < 2 * n + 2) cap *= 2;
     if (cap != slots_.size()) rehash(cap);

@@ -44,6 +44,7 @@ class ImplicitOracle final : public IntersectionOracle {
   std::uint64_t function_evaluations() const override { return evaluations_; }
   bool pivot_enter(const Simplex& tau) override;
   int pivot_exit(const std::int32_t* v) override;
+  void prefetch_pivot(const std::int32_t* v) override;
   /// When F or D prefers batches (and without SharedVertexValues): evaluates, in one
   /// evaluate_batch call each, every lattice vertex of the level's cofacets not cached yet. The
   /// walk evaluates each of them anyway, so F is still called once per vertex.

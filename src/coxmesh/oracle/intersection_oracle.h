@@ -37,6 +37,9 @@ class IntersectionOracle {
   /// intersect(), so a wrong guess costs time, never correctness. The defaults make no guesses.
   virtual bool pivot_enter(const Simplex& /*tau*/) { return false; }
   virtual int pivot_exit(const std::int32_t* /*v*/) { return -1; }
+  /// Optional: pivot_exit(v) follows soon; an oracle may hint the processor's caches to load what
+  /// it will read (the default does nothing).
+  virtual void prefetch_pivot(const std::int32_t* /*v*/) {}
 
   /// Optional: the k-simplices of the breadth-first level about to be walked, packed (pack(),
   /// packed_words(d) words each), before any of their cofacets is tested. An oracle may use it to

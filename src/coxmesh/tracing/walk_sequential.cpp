@@ -32,6 +32,14 @@ TraceResult SequentialWalk::finish() {
 void SequentialWalk::walk() {
   Simplex tau;
   CofaceEnumerator cofacets;
+  // The cofacets of τ in a pipeline of three steps: μ is taken (and the oracle told that pivot_exit
+  // will read its new vertex v), one cofacet later the oracle guesses μ's other transverse facet (and
+  // its slot in S is fetched), two cofacets later still μ is classified. The oracle and S are asked
+  // the same things in the same order as by other_transverse_facet (pivot_exit only reads values,
+  // of v, a vertex of every facet tested after it). Both look-ups are at random places of tables
+  // much bigger than the caches: fetched ahead, they wait less (docs/benchmarks.md).
+  constexpr int kGuessLag = 1, kTestLag = 2, kRing = kGuessLag + kTestLag + 1;
+  Pending pending[kRing];
   for (; head_ < result_.simplices.size(); ++head_) {
     if (head_ >= level_end_) {  // a breadth-first level starts: handed to the oracle at once
       if (!start_level()) return;
@@ -40,17 +48,55 @@ void SequentialWalk::walk() {
     tau = result_.simplices.simplex(head_, d_);
     const bool pivots = oracle_.pivot_enter(tau);
     cofacets.reset(tau, k_ + 1);
-    while (const Simplex* cofacet = cofacets.next()) {
-      const Simplex& mu = *cofacet;
-      const std::uint32_t known = result_.simplices.size();
-      // (τ's key is fetched per cofacet: classify appends to S, which may move the keys)
-      const Found f = other_transverse_facet(oracle_, pivots, tau, result_.simplices.key(head_), arrivals_[head_], mu,
-                                             [this](const Simplex& s) { return classify(s); });
-      if (f.kind == Kind::outside) add_boundary(mu, head_, outside_.data() + f.index);
-      if (f.kind == Kind::inside && f.index >= known)  // discovered now, through μ
-        arrivals_[f.index] = arrival_code(mu, f.facet, result_.simplices.key(f.index), d_);
-    }
+    int taken = 0, guessed = 0, finished = 0;  // pending[i % kRing] for finished ≤ i < taken
+    const auto advance = [&](int guess_lag, int test_lag) {
+      if (taken - guessed > guess_lag) guess_other_facet(pivots, pending[guessed++ % kRing]);
+      if (guessed - finished > test_lag) finish_cofacet(pending[finished++ % kRing]);
+    };
+    while (const Simplex* cofacet = cofacets.next())
+      if (take_cofacet(tau, *cofacet, pivots, pending[taken % kRing])) ++taken, advance(kGuessLag, kTestLag);
+    while (finished < taken) advance(0, 0);
   }
+}
+
+// other_transverse_facet (walk_common.h), first step: false when μ is τ's arrival.
+bool SequentialWalk::take_cofacet(const Simplex& tau, const Simplex& mu, bool pivots, Pending& p) {
+  p.entry = extra_vertex_index(tau, mu);
+  mu.vertex(p.entry, p.v);
+  // (τ's key is fetched per cofacet: classify appends to S, which may move the keys)
+  const std::uint64_t arrival = arrivals_[head_];
+  if (arrival != kNoCofacet && cofacet_code(p.v, result_.simplices.key(head_), d_) == arrival) return false;
+  p.mu = mu;
+  if (pivots) oracle_.prefetch_pivot(p.v);
+  return true;
+}
+
+// Second step: the oracle's guess, packed and hashed, its slot in S fetched.
+void SequentialWalk::guess_other_facet(bool pivots, Pending& p) {
+  p.guess = -1;
+  if (!pivots) return;
+  if (const int g = oracle_.pivot_exit(p.v); g >= 0) {
+    p.guess = g < p.entry ? g : g + 1;
+    p.facet = facet_without(p.mu, p.guess);
+    pack(p.facet, p.key);
+    p.hash = hash_words(p.key, packed_words(d_));
+    result_.simplices.prefetch(p.hash);
+  }
+}
+
+// Last step: the guess tested, then every other facet, then what the walk does with the one found.
+void SequentialWalk::finish_cofacet(const Pending& p) {
+  const std::uint32_t known = result_.simplices.size();
+  Found f{Kind::miss, 0};
+  if (p.guess >= 0)
+    if (f = classify(p.facet, p.key, p.hash); f.kind != Kind::miss) f.facet = p.guess;
+  for (int j = 0; f.kind == Kind::miss && j <= p.mu.k; ++j)
+    if (j != p.entry && j != p.guess)
+      if (f = classify(facet_without(p.mu, j)); f.kind != Kind::miss) f.facet = j;
+  if (f.kind == Kind::miss) return;
+  if (f.kind == Kind::outside) add_boundary(p.mu, head_, outside_.data() + f.index);
+  if (f.kind == Kind::inside && f.index >= known)  // discovered now, through μ
+    arrivals_[f.index] = arrival_code(p.mu, f.facet, result_.simplices.key(f.index), d_);
 }
 
 // The simplex limit is checked where a breadth-first level starts, in the sequential and the
@@ -73,7 +119,10 @@ bool SequentialWalk::start_level() {
 Found SequentialWalk::classify(const Simplex& tau) {
   std::uint32_t key[packed_words(kMaxDimension)];
   pack(tau, key);
-  const std::uint64_t h = hash_words(key, packed_words(d_));
+  return classify(tau, key, hash_words(key, packed_words(d_)));
+}
+
+Found SequentialWalk::classify(const Simplex& tau, const std::uint32_t* key, std::uint64_t h) {
   std::size_t slot;  // where τ goes in S if it is new and inside
   if (std::uint32_t id = result_.simplices.find(key, h, slot); id != PackedKeyIndex::kAbsent) return {Kind::inside, id};
   if (std::uint32_t id = others_.find(key, h); id != PackedKeyIndex::kAbsent) {
@@ -87,9 +136,9 @@ Found SequentialWalk::classify(const Simplex& tau) {
   if (x.hit) {
     if (x.domain < 0) {
       const std::uint32_t id = result_.simplices.insert_at(slot, key, h);
-      result_.points.insert(result_.points.end(), point_.begin(), point_.end());
-      domain_values_.push_back(x.domain);
-      arrivals_.push_back(kNoCofacet);  // set by the walk
+      append_few(result_.points, point_.data(), static_cast<std::size_t>(d_));
+      append_few(domain_values_, &x.domain, 1);
+      append_few(arrivals_, &kNoCofacet, 1);  // set by the walk
       return {Kind::inside, id};
     } else {
       payload = static_cast<std::uint32_t>(outside_.size());

@@ -107,7 +107,16 @@ UninitializedHugeVector<T> zeroed_huge_vector(std::size_t n) {
   UninitializedHugeVector<T> v;
   v.reserve(n);
   v.resize(n);
-  if (v.capacity() * sizeof(T) < HugePageAllocator<T>::kPage) std::fill(v.begin(), v.end(), T{});
+  if (v.capacity() * sizeof(T) < HugePageAllocator<T>::kPage) {
+    std::fill(v.begin(), v.end(), T{});
+  } else {
+    // A hash table is read at random before it is written: each page would fault twice (the shared
+    // zero page, then a page of its own), at about 2.5 times the cost of writing it up front here
+    // (docs/benchmarks.md, "Surfaces end to end"). Kernels before 5.14 ignore the advice.
+#if defined(MADV_POPULATE_WRITE) && !defined(__SANITIZE_ADDRESS__)
+    madvise(v.data(), HugePageAllocator<T>::round_up(n * sizeof(T)), MADV_POPULATE_WRITE);
+#endif
+  }
   return v;
 }
 
@@ -119,6 +128,31 @@ std::size_t held_bytes(const V& v) {
   const std::size_t capacity = v.capacity() * sizeof(T);
   if (capacity < HugePageAllocator<T>::kPage) return capacity;
   return std::min(capacity, HugePageAllocator<T>::round_up(v.size() * sizeof(T)));
+}
+
+/// v.insert(v.end(), p, p + n) for a few numbers, without a call to copy them. A big block of
+/// whole 2 MiB pages grows eightfold, not twofold: it moves (a serial copy) and its new pages are
+/// written for the first time (a page fault each) less often, and the pages never written cost
+/// nothing. held_bytes() is what doubling would give: from such a block, doubling gives blocks of
+/// whole 2 MiB pages too, at least as big as the vector, so held_bytes() counts round_up(size) either way.
+template <class V>
+void append_few(V& v, const typename V::value_type* p, std::size_t n) {
+  if (v.capacity() - v.size() < n) {
+    using T = typename V::value_type;
+    constexpr std::size_t kPage = HugePageAllocator<T>::kPage, kHeadroom = 8;
+    const std::size_t doubled = v.size() + std::max(v.size(), n);  // (what a vector's insert reserves)
+    const std::size_t bytes = v.capacity() * sizeof(T);
+    bool grown = false;
+    if (bytes >= kPage && bytes % kPage == 0 && kHeadroom * v.capacity() < v.max_size()) {
+      try {
+        v.reserve(std::max(kHeadroom * v.capacity(), doubled));
+        grown = true;
+      } catch (const std::bad_alloc&) {  // (the vector is unchanged: it doubles below)
+      }
+    }
+    if (!grown) v.reserve(doubled);
+  }
+  for (std::size_t i = 0; i < n; ++i) v.push_back(p[i]);
 }
 
 /// Resizes v to n elements; when v has to move, it reserves kHeadroom times its capacity. A move
