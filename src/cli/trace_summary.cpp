@@ -63,7 +63,8 @@ void print_trace_lines(std::ostream& out, const TraceSummary& s) {
         << "\n";
   out << "  F evaluations      " << report.function_evaluations << " (" << report.oracle_calls << " oracle calls)\n"
       << "  time               trace " << report.trace_seconds << " s ("
-      << static_cast<long long>(cc.interior[0].size() / std::max(report.trace_seconds, 1e-9))
+      << static_cast<long long>(static_cast<double>(report.topology.cells.empty() ? 0 : report.topology.cells[0]) /
+                                std::max(report.trace_seconds, 1e-9))
       << " simplices/s), cell complex " << report.cell_complex_seconds << " s, topology " << report.topology_seconds
       << " s";
   if (report.refinement) out << ", refine " << report.refinement->seconds << " s";

@@ -52,6 +52,9 @@ same_as_one_process three-manifold --preset sphere --m 3 --dim 4 --edge-length 0
 same_as_one_process box --preset torus --box -2,-2,-0.1,2,2,2
 same_as_one_process two-components --function "(x^2+y^2+z^2-1)*((x-3)^2+y^2+z^2-1)" --seed 1,0,0 --seed 4,0,0
 same_as_one_process limit --preset torus --max-simplices 3000
+# The summary of pieces (no process holds the complex) still counts the traced simplices.
+summary=$(mpi 2 trace --preset torus -o rate.cxm)
+check "pieces: the summary's simplex rate" "0 1" "$(grep -c '(0 simplices/s)' <<<"$summary") $(grep -c '^  traced simplices   [1-9]' <<<"$summary")"
 check "limit: stopped by it" '  "complete": false,' "$(grep '"complete"' limit.2.json)"
 check "two components" '  "components": 2,' "$(grep '"components"' two-components.2.json)"
 check "box: a boundary" 1 "$(grep -c '"boundary_simplices": [1-9]' box.3.json)"
