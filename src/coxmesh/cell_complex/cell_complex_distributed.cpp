@@ -15,18 +15,6 @@ namespace coxmesh {
 
 namespace {
 
-// Runs this rank's share of a step, then agrees with the others on whether every rank succeeded.
-template <class F>
-void agreed(Communicator& comm, F&& step) {
-  std::exception_ptr failure;
-  try {
-    step();
-  } catch (...) {
-    failure = std::current_exception();
-  }
-  agree_on_failure(comm, failure);
-}
-
 int owner_of(const std::uint32_t* key, int d, int ranks) {
   return owner_rank(reinterpret_cast<const std::int32_t*>(key), d, ranks);  // (y, the minimal vertex, first)
 }

@@ -7,12 +7,6 @@
 // only lowers counts, a pair that qualifies here still does whatever the other ranks delete.
 #include "coxmesh/cell_complex/topology_distributed.h"
 
-#include <phat/algorithms/twist_reduction.h>
-#include <phat/boundary_matrix.h>
-#include <phat/compute_persistence_pairs.h>
-#include <phat/persistence_pairs.h>
-#include <phat/representations/full_pivot_column.h>
-
 #include <algorithm>
 #include <cstring>
 #include <exception>
@@ -21,7 +15,9 @@
 #include <string>
 #include <unordered_map>
 
+#include "coxmesh/cell_complex/boundary_reduction.h"
 #include "coxmesh/errors.h"
+#include "coxmesh/tracing/trace_distributed.h"
 #include "coxmesh/util/union_find.h"
 
 namespace coxmesh {
@@ -31,17 +27,6 @@ namespace {
 using Bytes = std::vector<std::byte>;
 // A facet of another rank, in a facet list of local indices: its global id with this bit set.
 constexpr std::uint32_t kRemote = 0x80000000u;
-
-template <class F>
-void agreed(Communicator& comm, F&& step) {
-  std::exception_ptr failure;
-  try {
-    step();
-  } catch (...) {
-    failure = std::current_exception();
-  }
-  agree_on_failure(comm, failure);
-}
 
 // The levels in the order of GlobalCells (global_cells.h): level 2j + kind (kind 1: boundary) for
 // j = 0..m, so that global ids run by dimension. Each level is cut into `ranks` ranges of
@@ -331,30 +316,18 @@ std::vector<std::size_t> betti_by_reduction(const std::vector<std::uint32_t>& of
   constexpr std::uint32_t kDropped = UINT32_MAX;
   std::vector<std::uint32_t> column(dim.size(), kDropped);
   std::vector<int> dim_of;
+  std::vector<std::uint32_t> cell_of;  // the inverse of column
   for (std::size_t a = 0; a < dim.size(); ++a)
-    if (keep[a]) column[a] = static_cast<std::uint32_t>(dim_of.size()), dim_of.push_back(dim[a]);
-  phat::boundary_matrix<phat::full_pivot_column> matrix;
-  matrix.set_num_cols(static_cast<phat::index>(dim_of.size()));
-  std::vector<phat::index> col;
-  for (std::size_t a = 0; a < dim.size(); ++a) {
-    if (column[a] == kDropped) continue;
-    col.clear();
+    if (keep[a]) {
+      column[a] = static_cast<std::uint32_t>(dim_of.size());
+      dim_of.push_back(dim[a]);
+      cell_of.push_back(static_cast<std::uint32_t>(a));
+    }
+  return betti_by_column_reduction(m, dim_of, [&](std::size_t c, std::vector<phat::index>& col) {
+    const std::uint32_t a = cell_of[c];
     for (std::uint32_t i = offsets[a]; i < offsets[a + 1]; ++i)
       if (column[facets[i]] != kDropped) col.push_back(static_cast<phat::index>(column[facets[i]]));
-    std::sort(col.begin(), col.end());
-    matrix.set_col(static_cast<phat::index>(column[a]), col);
-    matrix.set_dim(static_cast<phat::index>(column[a]), static_cast<phat::dimension>(dim[a]));
-  }
-  phat::persistence_pairs pairs;
-  phat::compute_persistence_pairs<phat::twist_reduction>(pairs, matrix);
-  std::vector<std::size_t> betti(m + 1, 0);
-  for (int j : dim_of) ++betti[j];
-  for (phat::index p = 0; p < pairs.get_num_pairs(); ++p) {
-    const auto [birth, death] = pairs.get_pair(p);
-    --betti[dim_of[birth]];
-    --betti[dim_of[death]];
-  }
-  return betti;
+  });
 }
 
 // Rank 0: the Betti numbers of what the ranks left (records: global id, facet count, facets by

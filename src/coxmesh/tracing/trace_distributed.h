@@ -44,6 +44,19 @@ constexpr int owner_block_bits(int d) { return d >= 5 ? 1 : (6 + d / 2) / d; }
 /// for a rank that gave up.
 void agree_on_failure(Communicator& comm, std::exception_ptr failure);
 
+/// Runs this rank's share of a step, then agrees with the others on whether every rank succeeded
+/// (agree_on_failure).
+template <class F>
+void agreed(Communicator& comm, F&& step) {
+  std::exception_ptr failure;
+  try {
+    step();
+  } catch (...) {
+    failure = std::current_exception();
+  }
+  agree_on_failure(comm, failure);
+}
+
 /// trace_manifold(T, oracle, seeds, options) split between the ranks of `comm`; every rank calls it
 /// with the same arguments. Each rank walks the simplices it owns, level by level; the simplices it
 /// discovers for other ranks are sent to them once per level. `oracle` must read the vertex values
