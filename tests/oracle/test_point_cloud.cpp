@@ -155,10 +155,10 @@ TEST(PointCloud, LowerDimensionalSamplesAreFlagged) {
     const char* name;
     int m;
   };
-  // (Noise 0.001: a fifth of the trefoil's spacing.)
+  // (Noise 0.001: a tenth of the trefoil's spacing.)
   for (const Wrong w : {Wrong{"trefoil", 2}, Wrong{"flat-torus", 3}, Wrong{"trefoil", 1}, Wrong{"sphere", 2}}) {
     for (double noise : {0.0, 0.001}) {
-      const test::Samples s = test::sample_manifold(w.name, 2000, noise);
+      const test::Samples s = test::sample_manifold(w.name, 1000, noise);
       const int m = w.m;
       const Outcome o = mesh(s.points, s.d, m);
       EXPECT_EQ(o.diagnostics.apparent_dimension, s.m) << w.name << " " << noise;
