@@ -96,6 +96,19 @@ struct Case {
   Triangulation t;
   std::vector<std::vector<double>> seeds;
   std::size_t max_simplices = TraceOptions{}.max_simplices;
+
+  std::vector<std::vector<double>> seed_points() const {
+    return seeds.empty() ? std::vector<std::vector<double>>{f->seed()} : seeds;
+  }
+  TraceOptions options() const {
+    TraceOptions o;
+    o.max_simplices = max_simplices;
+    return o;
+  }
+  TraceResult trace_in_one_process() const {
+    ImplicitOracle oracle(t, f, domain);
+    return trace_manifold(t, oracle, seed_points(), options());
+  }
 };
 
 // What one rank walks with: its own vertex values, the oracle over them, and F at the vertices it owns.
@@ -275,12 +288,9 @@ std::vector<Case> complex_zoo() {
 TEST(DistributedCellComplex, EveryLevelAsOneProcessNumbersIt) {
   const std::vector<Case> cases = complex_zoo();
   for (const Case& c : cases) {
-    const std::vector<std::vector<double>> seeds =
-        c.seeds.empty() ? std::vector<std::vector<double>>{c.f->seed()} : c.seeds;
-    ImplicitOracle oracle(c.t, c.f, c.domain);
-    TraceOptions options;
-    options.max_simplices = c.max_simplices;
-    TraceResult trace = trace_manifold(c.t, oracle, seeds, options);
+    const std::vector<std::vector<double>> seeds = c.seed_points();
+    const TraceOptions options = c.options();
+    TraceResult trace = c.trace_in_one_process();
     EXPECT_GT(trace.simplices.size(), 300u) << c.name;
     if (c.domain) {
       EXPECT_GT(trace.boundary_simplices.size(), 0u) << c.name;
@@ -320,12 +330,9 @@ TEST(DistributedTopology, AsOneProcess) {
 #endif
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
-    const std::vector<std::vector<double>> seeds =
-        c.seeds.empty() ? std::vector<std::vector<double>>{c.f->seed()} : c.seeds;
-    ImplicitOracle oracle(c.t, c.f, c.domain);
-    TraceOptions options;
-    options.max_simplices = c.max_simplices;
-    const TopologyReport one = analyze_topology(build_cell_complex(trace_manifold(c.t, oracle, seeds, options)));
+    const std::vector<std::vector<double>> seeds = c.seed_points();
+    const TraceOptions options = c.options();
+    const TopologyReport one = analyze_topology(build_cell_complex(c.trace_in_one_process()));
     EXPECT_EQ(one.closed, c.max_simplices == TraceOptions{}.max_simplices);
     if (c.name == "SO(3)") {
       EXPECT_EQ(one.betti, (std::vector<std::size_t>{1, 1, 1, 1}));
@@ -379,12 +386,9 @@ TEST(DistributedTracing, IdenticalForEveryNumberOfRanks) {
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
-    const std::vector<std::vector<double>> seeds =
-        c.seeds.empty() ? std::vector<std::vector<double>>{c.f->seed()} : c.seeds;
-    ImplicitOracle oracle(c.t, c.f, c.domain);
-    TraceOptions options;
-    options.max_simplices = c.max_simplices;
-    const TraceResult one = trace_manifold(c.t, oracle, seeds, options);
+    const std::vector<std::vector<double>> seeds = c.seed_points();
+    const TraceOptions options = c.options();
+    const TraceResult one = c.trace_in_one_process();
     EXPECT_GT(one.simplices.size(), 500u);
     for (int ranks : {1, 2, 3, 4}) {
       std::vector<std::string> errors;
