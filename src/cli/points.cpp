@@ -2,6 +2,7 @@
 #include "points.h"
 
 #include <chrono>
+#include <cmath>
 
 #include "coxmesh/io/point_cloud_report.h"
 
@@ -63,8 +64,8 @@ void print_point_cloud(std::ostream& os, const PreparedPointCloud& pc) {
   os << "\n"
      << "  sample spacing     " << g.spacing << " (median nearest-neighbour distance); neighbourhood radius "
      << g.radius << " (" << static_cast<int>(g.mean_neighbours + 0.5) << " samples on average)\n"
-     << "  edge length        " << g.edge_length << "; tube "
-     << (g.tube_radius > 0 ? std::to_string(g.tube_radius) : "none") << "; function "
+     << "  edge length        " << g.edge_length << " (" << std::round(10 * g.edge_length / g.spacing) / 10
+     << " spacings); tube " << (g.tube_radius > 0 ? std::to_string(g.tube_radius) : "none") << "; function "
      << (g.blend_width > 0 ? "blended (width " + std::to_string(g.blend_width) + ")" : "nearest frame") << "\n"
      << "  frames             " << g.frustrated_edges << " of " << g.compared_edges
      << " compared neighbour-graph edges frustrated" << (g.used_given_normals ? " (normals from the file)" : "")

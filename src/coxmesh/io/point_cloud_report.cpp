@@ -1,6 +1,8 @@
 // Point clouds between files, arrays and the one-call API; see point_cloud_report.h.
 #include "coxmesh/io/point_cloud_report.h"
 
+#include <cmath>
+
 #include "coxmesh/errors.h"
 
 namespace coxmesh {
@@ -42,6 +44,8 @@ nlohmann::json point_cloud_json(const PreparedPointCloud& cloud, const SampleOra
                       {"frames_consistent", !g.frames_inconsistent},
                       {"apparent_dimension", g.apparent_dimension},
                       {"setup_seconds", cloud.seconds}};
+  // Flat samples have no finite radius of curvature: null.
+  j["curvature_radius"] = std::isfinite(g.curvature_radius) ? nlohmann::json(g.curvature_radius) : nlohmann::json();
   if (const std::vector<std::string> w = cloud.warnings(); !w.empty()) j["warnings"] = w;
   j["oracle"] = cloud.oracle_name();
   if (counts.local_pca_defects) j["local_pca_defects"] = *counts.local_pca_defects;
