@@ -269,7 +269,10 @@ TEST(PointCloud, DefaultsFollowTheSpacing) {
   EXPECT_LT(g.thickness, 0.5 * g.spacing);  // clean samples: the coarser edge lengths
   EXPECT_GT(g.curvature_radius, 0.8);       // the unit sphere's radius, from the thickness
   EXPECT_LT(g.curvature_radius, 1.25);
-  EXPECT_DOUBLE_EQ(g.edge_length, 4.5 * g.spacing);  // dense for its curvature: the longest edge
+  EXPECT_DOUBLE_EQ(g.curvature_radius, g.radius * g.radius / (7 * g.thickness));
+  EXPECT_DOUBLE_EQ(g.edge_length, g.curvature_radius / 5);  // dense for its curvature: 5.5 spacings
+  EXPECT_GT(g.edge_length, 2.5 * g.spacing);
+  EXPECT_LT(g.edge_length, 6 * g.spacing);
   EXPECT_DOUBLE_EQ(g.radius, 5 * g.spacing);
   EXPECT_DOUBLE_EQ(g.tube_radius, 3 * g.edge_length);
   EXPECT_EQ(g.components, 1u);
@@ -284,13 +287,17 @@ TEST(PointCloud, DefaultsFollowTheSpacing) {
   EXPECT_GT(dv, 0);  // outside the tube
   EXPECT_EQ(make_point_cloud_problem(test::sample_manifold("two-spheres", 2000).points, 3, 2).diagnostics.components,
             2u);
-  // Sparser: a fifth of the radius of curvature, between 2.5 and 4.5 spacings.
+  // Denser: a fifth of the radius of curvature is more than 6 spacings, the longest edge.
+  const PointCloudDiagnostics dense =
+      make_point_cloud_problem(test::sample_manifold("sphere", 10000).points, 3, 2).diagnostics;
+  EXPECT_GT(dense.curvature_radius / 5, 6 * dense.spacing);
+  EXPECT_DOUBLE_EQ(dense.edge_length, 6 * dense.spacing);
+  // Sparser for its curvature: 2.5 spacings at least.
   const PointCloudDiagnostics sparse =
-      make_point_cloud_problem(test::sample_manifold("sphere", 500).points, 3, 2).diagnostics;
-  EXPECT_GT(sparse.edge_length, 2.5 * sparse.spacing);
-  EXPECT_LT(sparse.edge_length, 4.5 * sparse.spacing);
-  EXPECT_DOUBLE_EQ(sparse.edge_length, sparse.curvature_radius / 5);
-  EXPECT_DOUBLE_EQ(sparse.curvature_radius, sparse.radius * sparse.radius / (7 * sparse.thickness));
+      make_point_cloud_problem(test::sample_manifold("torus", 1000).points, 3, 2).diagnostics;
+  EXPECT_LT(sparse.thickness, 0.5 * sparse.spacing);
+  EXPECT_LT(sparse.curvature_radius / 5, 2.5 * sparse.spacing);
+  EXPECT_DOUBLE_EQ(sparse.edge_length, 2.5 * sparse.spacing);
   // Noise of about a spacing: the finer edge length of 2 spacings.
   const PointCloudDiagnostics noisy =
       make_point_cloud_problem(test::sample_manifold("sphere", 2000, 0.04).points, 3, 2).diagnostics;

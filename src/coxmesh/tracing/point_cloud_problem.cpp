@@ -118,7 +118,7 @@ PointCloudProblem make_point_cloud_problem(std::vector<double> samples, int d, i
   // curvature ρ ≈ r²/(7t): an overestimate where noise adds to t, infinite for flat samples.
   diag.curvature_radius = diag.radius * diag.radius / (7 * diag.thickness);
   // Curves: 2.5 spacings when the samples lie within half a spacing of their local lines, 2
-  // otherwise. Surfaces alike, but up to 4.5 spacings where a fifth of ρ allows it (dense samples
+  // otherwise. Surfaces alike, but up to 6 spacings where a fifth of ρ allows it (dense samples
   // of a gently curved surface): the cells per area fall with the edge's square, most in high d.
   // Measured (docs/point_clouds.md): at 2.5 a noisy open disc (noise of 1 to 1.6 spacings) got
   // holes that 2 did not, and a thin knotted tube (thickness 1 spacing) broke at 2.75; sparse or
@@ -126,7 +126,7 @@ PointCloudProblem make_point_cloud_problem(std::vector<double> samples, int d, i
   const bool clean = diag.thickness <= 0.5 * diag.spacing;
   const double edge_factor = options.edge_factor > 0 ? options.edge_factor
                              : m == 1                ? (clean ? 2.5 : 2.0)
-                             : m == 2 ? (clean ? std::clamp(diag.curvature_radius / 5 / diag.spacing, 2.5, 4.5) : 2.0)
+                             : m == 2 ? (clean ? std::clamp(diag.curvature_radius / 5 / diag.spacing, 2.5, 6.0) : 2.0)
                                       : 2.0 * (m - 1);
   diag.edge_length = options.edge_length > 0 ? options.edge_length : edge_factor * diag.spacing;
   // Orientable manifolds give no frustrated edges but a few isolated ones at sharp features or in

@@ -20,7 +20,7 @@ enum class PointCloudFunction { nearest, blended };
 struct PointCloudOptions {
   double edge_length = 0;  ///< longest edge of the triangulation; 0: edge_factor × spacing
   /// 0: for curves 2.5, or 2 when the samples scatter more than half a spacing from their local
-  /// lines (the median thickness); for surfaces the same, but up to 4.5 where a fifth of the
+  /// lines (the median thickness); for surfaces the same, but up to 6 where a fifth of the
   /// radius of curvature is longer than 2.5 spacings; 2(m − 1) above (the cell complex of an m-manifold grows like
   /// (size/h)^m with a constant growing fast with m: S³ from 50,000 samples takes 0.3 GB at 4
   /// spacings, 1.9 GB at 2, with the same topology).
