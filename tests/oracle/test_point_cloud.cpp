@@ -338,6 +338,22 @@ TEST(PointCloud, OutliersAreNotSeeds) {
   EXPECT_LE(o.diagnostics.isolated_samples, 20u);
 }
 
+TEST(PointCloud, SeedsLieNearTheSurface) {
+  // Noise of two spacings: farthest-point sampling picks the samples pushed furthest out (3-4σ),
+  // which can be beyond the rings a seed's search looks through; moved onto F's zero set along
+  // their normals, the seeds are within the noise of the sphere.
+  const double sigma = 0.03;
+  const test::Samples s = test::sample_manifold("sphere", 20000, sigma);
+  const PointCloudProblem p = make_point_cloud_problem(s.points, 3, 2);
+  ASSERT_EQ(p.seeds.size(), 8u);
+  double farthest_sample = 0;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    farthest_sample =
+        std::max(farthest_sample, std::abs(std::hypot(s.points[3 * i], s.points[3 * i + 1], s.points[3 * i + 2]) - 1));
+  EXPECT_GT(farthest_sample, 3 * sigma);
+  for (const auto& seed : p.seeds) EXPECT_LT(std::abs(std::hypot(seed[0], seed[1], seed[2]) - 1), sigma);
+}
+
 TEST(PointCloud, GivenNormalsOrient) {
   test::Samples s = test::sample_manifold("sphere", 2000);
   PointCloudOptions options;
