@@ -303,6 +303,12 @@ TEST(PointCloud, DefaultsFollowTheSpacing) {
       make_point_cloud_problem(test::sample_manifold("sphere", 2000, 0.04).points, 3, 2).diagnostics;
   EXPECT_GT(noisy.thickness, 0.5 * noisy.spacing);
   EXPECT_DOUBLE_EQ(noisy.edge_length, 2 * noisy.spacing);
+  // Noise beyond a spacing: edges of 2 thicknesses, a blend up to 1.5 times wider than 2 thicknesses.
+  const PointCloudDiagnostics noisier =
+      make_point_cloud_problem(test::sample_manifold("sphere", 2000, 0.1).points, 3, 2).diagnostics;
+  EXPECT_GT(noisier.thickness, noisier.spacing);
+  EXPECT_DOUBLE_EQ(noisier.edge_length, 2 * noisier.thickness);
+  EXPECT_DOUBLE_EQ(noisier.blend_width, 2 * noisier.thickness * std::min(noisier.thickness / noisier.spacing, 1.5));
 }
 
 #ifndef __SANITIZE_ADDRESS__

@@ -18,12 +18,13 @@ namespace coxmesh {
 enum class PointCloudFunction { nearest, blended };
 
 struct PointCloudOptions {
-  double edge_length = 0;  ///< longest edge of the triangulation; 0: edge_factor × spacing
-  /// 0: for curves 2.5, or 2 when the samples scatter more than half a spacing from their local
-  /// lines (the median thickness); for surfaces the same, but up to 6 where a fifth of the
-  /// radius of curvature is longer than 2.5 spacings; 2(m − 1) above (the cell complex of an m-manifold grows like
-  /// (size/h)^m with a constant growing fast with m: S³ from 50,000 samples takes 0.3 GB at 4
-  /// spacings, 1.9 GB at 2, with the same topology).
+  /// Longest edge of the triangulation; 0: edge_factor × spacing, or × max(spacing, thickness)
+  /// for noisy curves and surfaces (the median thickness over half a spacing).
+  double edge_length = 0;
+  /// 0: for curves 2.5, or 2 when the samples are noisy; for surfaces the same, but up to 6 where
+  /// a fifth of the radius of curvature is longer than 2.5 spacings; 2(m − 1) above (the cell
+  /// complex of an m-manifold grows like (size/h)^m with a constant growing fast with m: S³ from
+  /// 50,000 samples takes 0.3 GB at 4 spacings, 1.9 GB at 2, with the same topology).
   double edge_factor = 0;
   double radius = 0;  ///< PCA neighbourhood radius; 0: radius_factor × spacing
   double radius_factor = 5.0;
@@ -31,7 +32,8 @@ struct PointCloudOptions {
   double tube = 3.0;       ///< tube radius in edge lengths, at least 3/4 of the largest gap (the domain); 0: no tube
   PointCloudFunction function = PointCloudFunction::blended;
   /// w of the blended function; 0: blend_factor × max(spacing, thickness), so that it averages
-  /// over the noise when the samples are noisier than they are dense.
+  /// over the noise when the samples are noisier than they are dense, times thickness / spacing
+  /// within [1, 1.5].
   double blend_width = 0;
   double blend_factor = 2.0;
   int seeds_per_component = 8;
