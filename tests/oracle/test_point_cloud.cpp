@@ -344,6 +344,26 @@ TEST(PointCloud, OutliersAreNotSeeds) {
   EXPECT_LE(o.diagnostics.isolated_samples, 20u);
 }
 
+TEST(PointCloud, CloseSheetsKeepShortEdges) {
+  // Two flat squares 0.2 apart (13 spacings): flat samples would allow the longest edge, 6
+  // spacings, which joins them through hundreds of handles; half the feature size (the empty balls
+  // between them, radius 0.1) keeps about 3.3.
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> side(-1, 1);
+  std::vector<double> points;
+  for (double z : {0.0, 0.2})
+    for (int i = 0; i < 4000; ++i) points.insert(points.end(), {side(rng), side(rng), z});
+  const Outcome o = mesh(points, 3, 2);
+  EXPECT_NEAR(o.diagnostics.feature_size, 0.1, 0.01);
+  EXPECT_DOUBLE_EQ(o.diagnostics.edge_length, o.diagnostics.feature_size / 2);
+  EXPECT_EQ(o.topology.betti, (std::vector<std::size_t>{2, 0, 0}));
+  // One square alone: nothing nearby, the longest edge.
+  points.resize(points.size() / 2);
+  const Outcome alone = mesh(points, 3, 2);
+  EXPECT_DOUBLE_EQ(alone.diagnostics.edge_length, 6 * alone.diagnostics.spacing);
+  EXPECT_EQ(alone.topology.betti, (std::vector<std::size_t>{1, 0, 0}));
+}
+
 TEST(PointCloud, SeedsLieNearTheSurface) {
   // Noise of two spacings: farthest-point sampling picks the samples pushed furthest out (3-4σ),
   // which can be beyond the rings a seed's search looks through; moved onto F's zero set along

@@ -46,6 +46,7 @@ nlohmann::json point_cloud_json(const PreparedPointCloud& cloud, const SampleOra
                       {"setup_seconds", cloud.seconds}};
   // Flat samples have no finite radius of curvature: null.
   j["curvature_radius"] = std::isfinite(g.curvature_radius) ? nlohmann::json(g.curvature_radius) : nlohmann::json();
+  j["feature_size"] = g.feature_size > 0 ? nlohmann::json(g.feature_size) : nlohmann::json();  // (0: not measured)
   if (const std::vector<std::string> w = cloud.warnings(); !w.empty()) j["warnings"] = w;
   j["oracle"] = cloud.oracle_name();
   if (counts.local_pca_defects) j["local_pca_defects"] = *counts.local_pca_defects;

@@ -64,6 +64,52 @@ std::vector<double> onto_zero_set(const ImplicitFunction& f, const SampleFrames&
   return best;
 }
 
+// The radius of the largest ball tangent to the samples at sample i on the side of direction v
+// (a unit normal) that holds no sample deeper than `slack` (noise and curvature of its own
+// neighbourhood), at most `cap`: shrinking balls (Ma, Bae, Choi and Ng 2012), each shrunk to the
+// ball tangent at the sample through the sample found inside. Another sheet at distance g along v
+// gives g/2; a surface's own concave side its radius of curvature.
+double empty_ball_radius(const SampleTree& tree, std::uint32_t i, const double* v, double cap, double slack) {
+  const int d = tree.dimension();
+  const double* p = tree.point(i);
+  std::array<double, kMaxDimension> c;
+  double a = cap;
+  for (int step = 0; step < 16; ++step) {
+    for (int t = 0; t < d; ++t) c[t] = p[t] + a * v[t];
+    double d2;
+    const double* q = tree.point(tree.nearest(c.data(), &d2));
+    if (std::sqrt(d2) >= a - slack) return a;
+    double w2 = 0, along = 0;
+    for (int t = 0; t < d; ++t) w2 += (q[t] - p[t]) * (q[t] - p[t]), along += v[t] * (q[t] - p[t]);
+    const double smaller = w2 / (2 * along);  // (along > 0: q is nearer to c than p is)
+    if (!(smaller < a)) return a;
+    a = smaller;
+  }
+  return a;
+}
+
+// A low quantile over every 8th sample (in the tree's order: spread over the samples) of the
+// smallest empty ball along ± each normal, at most `cap`: the distance from the samples to the
+// medial axis where it comes nearest (the local feature size), blind to what lies closer than `slack`.
+double feature_size(const SampleTree& tree, const SampleFrames& fr, double cap, double slack, int threads) {
+  const std::size_t n = tree.size(), stride = 8, probes = (n + stride - 1) / stride;
+  std::vector<double> radius(probes);
+  WorkerPool(std::max(threads, 1)).run(probes, [&](std::size_t j, int) {
+    const std::uint32_t i = tree.sample_at(static_cast<std::uint32_t>(j * stride));
+    std::array<double, kMaxDimension> v;
+    double smallest = cap;
+    for (int normal = 0; normal < fr.k; ++normal)
+      for (double sign : {1.0, -1.0}) {
+        for (int t = 0; t < fr.d; ++t) v[t] = sign * fr.frame(i)[normal * fr.d + t];
+        smallest = std::min(smallest, empty_ball_radius(tree, i, v.data(), cap, slack));
+      }
+    radius[j] = smallest;
+  });
+  const std::size_t low = probes / 100;
+  std::nth_element(radius.begin(), radius.begin() + low, radius.end());
+  return radius[low];
+}
+
 std::string percent(double x) {
   std::ostringstream s;
   s.precision(2);
@@ -147,11 +193,20 @@ PointCloudProblem make_point_cloud_problem(std::vector<double> samples, int d, i
   // Measured (docs/point_clouds.md): at 2.5 a noisy open disc (noise of 1 to 1.6 spacings) got
   // holes that 2 did not, and a thin knotted tube (thickness 1 spacing) broke at 2.75; sparse or
   // noisy Klein bottles in R⁴, right at 2.5 spacings, went wrong at 3.2 where ρ/5 was 1.6 spacings.
+  // Curvature is not the only limit: sheets of the samples close to each other (parallel planes, a
+  // fold) are as thin a feature, seen by the thickness only within the neighbourhood radius. So the
+  // longer edge must also stay within half the feature size (the nearest medial ball): two planes
+  // 8 spacings apart are right at 2.5 spacings and wrong (a thousand handles) at 6.
   const bool clean = diag.thickness <= 0.5 * diag.spacing;
+  double surface_factor = std::clamp(diag.curvature_radius / 5 / diag.spacing, 2.5, 6.0);
+  if (m == 2 && clean && options.edge_factor <= 0 && options.edge_length <= 0 && surface_factor > 2.5) {
+    diag.feature_size = feature_size(tree, fr, 2 * surface_factor * diag.spacing, 3 * diag.thickness, threads);
+    surface_factor = std::clamp(diag.feature_size / 2 / diag.spacing, 2.5, surface_factor);
+  }
   const double edge_factor = options.edge_factor > 0 ? options.edge_factor
                              : m == 1                ? (clean ? 2.5 : 2.0)
-                             : m == 2 ? (clean ? std::clamp(diag.curvature_radius / 5 / diag.spacing, 2.5, 6.0) : 2.0)
-                                      : 2.0 * (m - 1);
+                             : m == 2                ? (clean ? surface_factor : 2.0)
+                                                     : 2.0 * (m - 1);
   // Noisy samples: scaled by the thickness beyond a spacing, so that the lattice does not resolve
   // the noise (50,000 samples of a sphere or a torus with noise of 1.8 spacings got handles at 2
   // spacings, none at 2 thicknesses).

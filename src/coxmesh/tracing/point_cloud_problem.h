@@ -52,6 +52,10 @@ struct PointCloudDiagnostics {
   /// r²/(7 × thickness), r the radius: the radius of curvature of clean samples of a surface
   /// (infinite when they are flat; too long when noise dominates the thickness)
   double curvature_radius = 0;
+  /// Where the surface rule would give more than 2.5 spacings: the radius of the smallest empty
+  /// ball tangent to the samples along their normals (a low quantile; 0 when not measured). The
+  /// edge stays within half of it (other sheets nearby, folds).
+  double feature_size = 0;
   double radius = 0, edge_length = 0, tube_radius = 0, blend_width = 0;
   double longest_gap = 0;        ///< longest edge of a Euclidean minimum spanning forest of the non-isolated samples
   double mean_neighbours = 0;    ///< samples per PCA neighbourhood
