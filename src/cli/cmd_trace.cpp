@@ -221,7 +221,11 @@ void run(TraceCliOptions o) {
   PartCounts pieces_written{};  // (summed over them: points, cells, skipped cells)
   DistributedTopologyStats topology_stats;
   if (comm) {
-    if (cloud) throw InputError("point clouds are not traced by several processes yet: run without mpirun");
+    // Samples: every process prepares the same problem from them (the preparation's result does not
+    // depend on threads), and the per-vertex function is traced like any F.
+    if (cloud && cloud->oracle != SampleOracle::vertex)
+      throw InputError("the " + cloud->oracle_name() +
+                       " oracle of point clouds is not traced by several processes yet: run without mpirun");
     if (problem.domains.size() + (problem.domain ? 1 : 0) >= 2)
       throw InputError("manifolds with corners are not traced by several processes yet: run without mpirun");
     // .cxm and .pvtu files in pieces, one per process, and a manifest (native_pieces.h,

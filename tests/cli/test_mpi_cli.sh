@@ -124,6 +124,19 @@ check "a piece not written: non-zero status, one error line, no manifest" "1 1 n
 status=0
 mpi 2 trace --function "x^2+" --json > bad.out 2> bad.err || status=$?
 check "bad expression: non-zero status, one error line" "1 1" "$((status != 0)) $(grep -c '^coxmesh: error:' bad.err)"
+# Samples (a torus, quasi-random by the golden ratios): every rank prepares the same problem from
+# them, and the per-vertex function is traced like any F.
+awk 'BEGIN { pi = atan2(0, -1); for (i = 0; i < 3000; i++) { a = 2 * pi * ((i * 0.6180339887) % 1);
+  b = 2 * pi * ((i * 0.7548776662) % 1); r = 1 + 0.4 * cos(b); printf "%.9f %.9f %.9f\n", r * cos(a), r * sin(a), 0.4 * sin(b) } }' > torus.xyz
+same_as_one_process cloud --points torus.xyz --m 2
+# RP^2 in R^4 (a Fibonacci sphere through the Veronese map): its frames ask for the winding oracle,
+# which one process runs: refused with one error line.
+awk 'BEGIN { for (i = 0; i < 2000; i++) { z = 1 - 2 * (i + 0.5) / 2000; r = sqrt(1 - z * z); p = 2.399963 * i;
+  x = r * cos(p); y = r * sin(p); printf "%.9f %.9f %.9f %.9f\n", x * y, x * z, y * y - z * z, 2 * y * z } }' > rp2.xyz
+status=0
+mpi 2 trace --points rp2.xyz --m 2 -q --no-output 2> rp2.err || status=$?
+check "the winding oracle under mpirun: refused with one error line" "1 1" \
+  "$((status != 0)) $(grep -c '^coxmesh: error: the winding oracle of point clouds is not traced by several processes' rp2.err)"
 # Manifolds with corners are traced by one process only: refused, not traced on every rank.
 status=0
 mpi 2 trace --preset sphere --domain=-x --domain=-y --json -o corners.cxm > corners.out 2> corners.err || status=$?
