@@ -132,9 +132,16 @@ struct Arrivals {
   void send(std::vector<std::vector<std::byte>>& out, int owner, int rank, const std::uint32_t* key,
             std::uint64_t discovery, const double* x) {
     if (owner == rank) return add(key, discovery, x);
-    put(out[owner], key, found.words());
-    put(out[owner], &discovery, 1);
-    put(out[owner], x, extra);
+    std::byte record[sizeof(std::uint32_t) * packed_words(kMaxDimension) + sizeof(std::uint64_t) +
+                     sizeof(double) * kMaxDimension];  // (one append per record)
+    std::byte* at = record;
+    const auto write = [&](const auto* p, std::size_t n) {
+      if (n > 0) std::memcpy(at, p, n * sizeof *p), at += n * sizeof *p;
+    };
+    write(key, static_cast<std::size_t>(found.words()));
+    write(&discovery, 1);
+    write(x, static_cast<std::size_t>(extra));
+    out[owner].insert(out[owner].end(), record, at);
   }
 
   static constexpr std::size_t kBatch = 4096;
@@ -241,7 +248,8 @@ CellLevel ordered_level(Arrivals& a, const std::vector<std::uint32_t>& global, s
     for (const std::uint64_t e : incidences) level.facet_ids[next[place[e >> 32]]++] = static_cast<std::uint32_t>(e);
   }
   for (std::uint32_t c = 0; c < n; ++c) {
-    const auto from = level.facet_ids.begin() + level.facet_offsets[c], to = level.facet_ids.begin() + level.facet_offsets[c + 1];
+    const auto from = level.facet_ids.begin() + level.facet_offsets[c],
+               to = level.facet_ids.begin() + level.facet_offsets[c + 1];
     if (!std::is_sorted(from, to)) std::sort(from, to);
   }
   std::vector<std::uint64_t>().swap(a.incidences);
@@ -258,13 +266,20 @@ CellLevel next_level(const CellLevel& prev, const std::vector<std::uint32_t>& pr
   const double no_values = 0;  // (no extra values at this level)
   CofaceEnumerator cofaces;
   std::uint32_t key[packed_words(kMaxDimension)];
+  // The owner of the last minimal vertex: a cell's cofaces mostly share theirs (owner_rank hashes).
+  std::uint32_t last_y[kMaxDimension];
+  int last_owner = -1;
   agreed(comm, [&] {
     for (std::uint32_t c = 0; c < prev.size(); ++c) {
       std::uint64_t discovery = std::uint64_t{prev_ids[c]} << 32;
       cofaces.reset(prev.simplices.simplex(c, d), l);
       while (const Simplex* nu = cofaces.next()) {
         pack(*nu, key);
-        arrivals.send(out, owner_of(key, d, ranks), comm.rank(), key, discovery++, &no_values);
+        if (last_owner < 0 || std::memcmp(key, last_y, sizeof(std::uint32_t) * d) != 0) {
+          std::memcpy(last_y, key, sizeof(std::uint32_t) * d);
+          last_owner = owner_of(key, d, ranks);
+        }
+        arrivals.send(out, last_owner, comm.rank(), key, discovery++, &no_values);
       }
     }
   });

@@ -46,6 +46,8 @@ struct Layout {
     local_start.assign(1, 0);
     for (int l = 0; l < levels(); ++l) {
       start.push_back(start.back() + size[l]);
+      lo_.push_back(first(l, rank));
+      hi_.push_back(first(l, rank + 1));
       local_start.push_back(local_start.back() + (hi(l) - lo(l)));
     }
   }
@@ -53,8 +55,9 @@ struct Layout {
   std::uint64_t total() const { return start.back(); }
   std::uint64_t local_count() const { return local_start.back(); }
   std::uint64_t first(int l, int r) const { return size[l] * static_cast<std::uint64_t>(r) / ranks; }
-  std::uint64_t lo(int l) const { return first(l, rank); }
-  std::uint64_t hi(int l) const { return first(l, rank + 1); }
+  // (kept, not divided again: local() runs several times per incidence)
+  std::uint64_t lo(int l) const { return lo_[l]; }
+  std::uint64_t hi(int l) const { return hi_[l]; }
   int level_of(std::uint64_t g) const {
     int l = 0;
     while (start[l + 1] <= g) ++l;  // (2(m + 1) levels: a short scan)
@@ -85,6 +88,9 @@ struct Layout {
     const int l = local_level_of(i);
     return static_cast<std::uint32_t>(start[l] + lo(l) + (i - local_start[l]));
   }
+
+ private:
+  std::vector<std::uint64_t> lo_, hi_;  // this rank's range of each level
 };
 
 // This rank's ranges as one facet CSR over its cells (local indices), facets by global id.
