@@ -88,6 +88,27 @@ TEST(PackedKeyIndex, ReleasedIndexKeepsKeysAndRefusesLookUpsUntilReindexed) {
   EXPECT_EQ(index.insert(absent), std::make_pair(5000u, true));
 }
 
+// A reordered copy holds the keys in the order given, without a table until reindexed.
+TEST(PackedKeyIndex, UnindexedCopyReordersTheKeys) {
+  PackedKeyIndex index(3);
+  for (std::uint32_t i = 0; i < 3000; ++i) {
+    const std::uint32_t key[3] = {i, i * 31u, 5u};
+    index.insert(key);
+  }
+  std::vector<std::uint32_t> order(2000);
+  for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = (i * 7u + 11u) % 3000u;  // (distinct)
+  PackedKeyIndex copy = PackedKeyIndex::unindexed_copy(index, order);
+  EXPECT_FALSE(copy.indexed());
+  ASSERT_EQ(copy.size(), 2000u);
+  for (std::uint32_t i = 0; i < order.size(); ++i)
+    ASSERT_TRUE(std::equal(copy.key(i), copy.key(i) + 3, index.key(order[i]))) << i;
+  EXPECT_THROW(copy.find(index.key(order[0])), std::logic_error);
+  copy.reindex();
+  for (std::uint32_t i = 0; i < order.size(); ++i) ASSERT_EQ(copy.find(index.key(order[i])), i);
+  EXPECT_EQ(copy.find(index.key(1)), PackedKeyIndex::kAbsent);  // (1 is not in the order)
+  EXPECT_EQ(index.size(), 3000u);                               // (the source is untouched)
+}
+
 // Against one insert() after the other, from a table already holding some of the keys.
 TEST(PackedKeyIndex, InsertRunsGivesTheIdsOfSequentialInsertion) {
   std::mt19937_64 rng(12);

@@ -3,6 +3,8 @@
 #include "coxmesh/cell_complex/cell_complex_distributed.h"
 
 #include <algorithm>
+#include <bit>
+#include <cstring>
 #include <numeric>
 #include <span>
 #include <stdexcept>
@@ -19,10 +21,33 @@ int owner_of(const std::uint32_t* key, int d, int ranks) {
   return owner_rank(reinterpret_cast<const std::int32_t*>(key), d, ranks);  // (y, the minimal vertex, first)
 }
 
+// The place of each of `keys` (distinct, from one range: their g = key >> 32 span at most n / P
+// values) in increasing order: a counting sort by g, then by the whole key among the few of one g.
+std::vector<std::uint32_t> places_in_order(const std::vector<std::uint64_t>& keys) {
+  std::vector<std::uint32_t> place(keys.size());
+  if (keys.empty()) return place;
+  const auto [lo, hi] = std::minmax_element(keys.begin(), keys.end());
+  const std::uint64_t first_g = *lo >> 32;
+  std::vector<std::uint32_t> start((*hi >> 32) - first_g + 2, 0);
+  for (const std::uint64_t key : keys) ++start[(key >> 32) - first_g + 1];
+  for (std::size_t g = 1; g < start.size(); ++g) start[g] += start[g - 1];
+  std::vector<std::uint32_t> sorted(keys.size());  // indices of keys, by g
+  {
+    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+    for (std::uint32_t i = 0; i < keys.size(); ++i) sorted[next[(keys[i] >> 32) - first_g]++] = i;
+  }
+  for (std::size_t g = 0; g + 1 < start.size(); ++g)
+    if (start[g + 1] - start[g] > 1)
+      std::sort(sorted.begin() + start[g], sorted.begin() + start[g + 1],
+                [&](std::uint32_t a, std::uint32_t b) { return keys[a] < keys[b]; });
+  for (std::uint32_t p = 0; p < sorted.size(); ++p) place[sorted[p]] = p;
+  return place;
+}
+
 // The global ids of new cells from their smallest discovery keys g << 32 | s (g < n, the global id
 // of a cell of the level below; keys distinct): a key's rank among every rank's keys. Without
 // gathering the keys anywhere: a key goes to the rank that holds g's range (the ranks split [0, n)
-// into contiguous ranges in rank order), which sorts what it receives and adds the keys of the
+// into contiguous ranges in rank order), which orders what it receives and adds the keys of the
 // ranges before its own (a prefix sum of one count per rank); the ids come back in the order sent.
 std::uint64_t number_by_keys(const std::vector<std::uint64_t>& keys, std::uint64_t n, Communicator& comm,
                              std::vector<std::uint32_t>& ids) {
@@ -34,16 +59,15 @@ std::uint64_t number_by_keys(const std::vector<std::uint64_t>& keys, std::uint64
   const std::vector<std::byte> in = comm.exchange(out, counts);
   const std::vector<std::size_t> from = counts;  // bytes of keys from each rank
   out.assign(ranks, {});
-  std::vector<std::uint64_t> received, sorted;
+  std::vector<std::uint32_t> place;  // of each key received, among them
   agreed(comm, [&] {
-    received.resize(in.size() / sizeof(std::uint64_t));
+    std::vector<std::uint64_t> received(in.size() / sizeof(std::uint64_t));
     const std::byte* at = in.data();
     take(at, received.data(), received.size());
-    sorted = received;
-    std::sort(sorted.begin(), sorted.end());
+    place = places_in_order(received);
   });
   std::vector<std::byte> mine;
-  const std::uint64_t here = sorted.size();
+  const std::uint64_t here = place.size();
   put(mine, &here, 1);
   const std::vector<std::byte> totals_bytes = comm.all_gather(mine, counts);
   std::vector<std::uint64_t> totals(ranks);
@@ -51,12 +75,13 @@ std::uint64_t number_by_keys(const std::vector<std::uint64_t>& keys, std::uint64
   take(at, totals.data(), totals.size());
   const std::uint64_t offset = std::accumulate(totals.begin(), totals.begin() + comm.rank(), std::uint64_t{0});
   std::size_t next = 0;
-  for (int r = 0; r < ranks; ++r)
+  for (int r = 0; r < ranks; ++r) {
+    out[r].resize(from[r] / sizeof(std::uint64_t) * sizeof(std::uint32_t));
     for (std::size_t i = 0; i < from[r] / sizeof(std::uint64_t); ++i) {
-      const auto place = std::lower_bound(sorted.begin(), sorted.end(), received[next++]) - sorted.begin();
-      const auto id = static_cast<std::uint32_t>(offset + static_cast<std::uint64_t>(place));
-      put(out[r], &id, 1);
+      const auto id = static_cast<std::uint32_t>(offset + place[next++]);
+      std::memcpy(out[r].data() + i * sizeof(std::uint32_t), &id, sizeof id);
     }
+  }
   const std::vector<std::byte> back = comm.exchange(out, counts);
   std::vector<const std::byte*> reply(ranks);  // the next id from each range's rank
   for (int r = 0; r < ranks; ++r) reply[r] = r == 0 ? back.data() : reply[r - 1] + counts[r - 1];
@@ -68,35 +93,66 @@ std::uint64_t number_by_keys(const std::vector<std::uint64_t>& keys, std::uint64
 // The cells of a level that reach their owner (this rank), each with a discovery key (packed key,
 // discovery key, `extra` doubles): per cell its smallest key and that key's extra values, and, with
 // `facets`, every cell it was found from. Records for this rank are added as they are made; the
-// others arrive in one exchange.
+// others arrive in one exchange. Records are inserted in batches, the table's slots fetched ahead
+// (insert_runs): a level's cells are millions of random look-ups.
 struct Arrivals {
   Arrivals(int words, int extra, bool facets) : found(words), extra(extra), facets(facets) {}
 
   void add(const std::uint32_t* key, std::uint64_t discovery, const double* x) {
-    const auto [id, fresh] = found.insert(key);
-    if (fresh) {
-      first.push_back(discovery);
-      values.insert(values.end(), x, x + extra);
-    } else if (discovery < first[id]) {
-      first[id] = discovery;
-      std::copy(x, x + extra, values.begin() + static_cast<std::ptrdiff_t>(id) * extra);
+    const int words = found.words();
+    for (int i = 0; i < words; ++i) batch_keys.push_back(key[i]);  // (a few words: no call to copy them)
+    batch_hashes.push_back(hash_words(key, words));
+    batch_discoveries.push_back(discovery);
+    batch_values.insert(batch_values.end(), x, x + extra);
+    if (batch_hashes.size() == kBatch) flush();
+  }
+  // Inserts the batch: ids in the order of add(), as one insert per record would give them.
+  void flush() {
+    const std::size_t n = batch_hashes.size();
+    if (n == 0) return;
+    batch_ids.resize(n);
+    const KeyRun run{batch_keys.data(), batch_hashes.data(), n, batch_ids.data()};
+    found.insert_runs({&run, 1});
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint32_t id = batch_ids[i] & ~PackedKeyIndex::kNewBit;
+      const std::uint64_t discovery = batch_discoveries[i];
+      const double* x = batch_values.data() + i * extra;
+      if (batch_ids[i] & PackedKeyIndex::kNewBit) {
+        first.push_back(discovery);
+        values.insert(values.end(), x, x + extra);
+      } else if (discovery < first[id]) {
+        first[id] = discovery;
+        std::copy(x, x + extra, values.begin() + static_cast<std::ptrdiff_t>(id) * extra);
+      }
+      if (facets) incidences.push_back(std::uint64_t{id} << 32 | discovery >> 32);
     }
-    if (facets) incidences.push_back(std::uint64_t{id} << 32 | discovery >> 32);
+    batch_keys.clear(), batch_hashes.clear(), batch_discoveries.clear(), batch_values.clear();
   }
   // A record for `owner`: added here, or appended to its message.
   void send(std::vector<std::vector<std::byte>>& out, int owner, int rank, const std::uint32_t* key,
             std::uint64_t discovery, const double* x) {
     if (owner == rank) return add(key, discovery, x);
-    put(out[owner], key, found.words());
-    put(out[owner], &discovery, 1);
-    put(out[owner], x, extra);
+    std::byte record[sizeof(std::uint32_t) * packed_words(kMaxDimension) + sizeof(std::uint64_t) +
+                     sizeof(double) * kMaxDimension];  // (one append per record)
+    std::byte* at = record;
+    const auto write = [&](const auto* p, std::size_t n) {
+      if (n > 0) std::memcpy(at, p, n * sizeof *p), at += n * sizeof *p;
+    };
+    write(key, static_cast<std::size_t>(found.words()));
+    write(&discovery, 1);
+    write(x, static_cast<std::size_t>(extra));
+    out[owner].insert(out[owner].end(), record, at);
   }
 
+  static constexpr std::size_t kBatch = 4096;
   PackedKeyIndex found;
   int extra;
   bool facets;
   std::vector<std::uint64_t> first, incidences;  // incidences: (cell here) << 32 | facet
   std::vector<double> values;
+  std::vector<std::uint32_t> batch_keys, batch_ids;
+  std::vector<std::uint64_t> batch_hashes, batch_discoveries;
+  std::vector<double> batch_values;
 };
 
 CellLevel ordered_level(Arrivals& a, const std::vector<std::uint32_t>& global, std::vector<std::uint32_t>& ids,
@@ -104,7 +160,8 @@ CellLevel ordered_level(Arrivals& a, const std::vector<std::uint32_t>& global, s
 
 // The level that `arrivals` and the messages `out` make, settled on each owner: numbered by the
 // cells' smallest discovery keys (prev_size: the size of the level the keys' ids are from), in
-// global order here, with their facets and the extra values of the smallest key in `data`.
+// global order here, with their facets and the extra values of the smallest key in `data`. The
+// level's keys come without a hash table (reindex() builds it).
 CellLevel settle(Arrivals& arrivals, std::vector<std::vector<std::byte>>& out, std::uint64_t prev_size,
                  Communicator& comm, std::vector<std::uint32_t>& ids, std::uint64_t& size, std::vector<double>* data) {
   std::vector<std::size_t> counts;
@@ -122,6 +179,7 @@ CellLevel settle(Arrivals& arrivals, std::vector<std::vector<std::byte>>& out, s
       take(at, x, extra);
       arrivals.add(key, discovery, x);
     }
+    arrivals.flush();
   });
   in = {};
   std::vector<std::uint32_t> global;
@@ -131,42 +189,70 @@ CellLevel settle(Arrivals& arrivals, std::vector<std::vector<std::byte>>& out, s
   return level;
 }
 
-// The cells that arrived here in global order (by their smallest keys), with their facets.
+// (global id) << 32 | i sorted by global id (distinct, below 2^bits): least significant digit
+// radix sort on the high word.
+void sort_by_high_word(std::vector<std::uint64_t>& v, int bits) {
+  constexpr int kDigit = 11;
+  std::vector<std::uint64_t> sorted(v.size());
+  for (int low = 32; low < 32 + bits; low += kDigit) {
+    const int width = std::min(kDigit, 32 + bits - low);
+    const std::uint64_t mask = (std::uint64_t{1} << width) - 1;
+    std::vector<std::uint32_t> start((std::size_t{1} << width) + 1, 0);
+    for (const std::uint64_t e : v) ++start[((e >> low) & mask) + 1];
+    for (std::size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
+    for (const std::uint64_t e : v) sorted[start[(e >> low) & mask]++] = e;
+    v.swap(sorted);
+  }
+}
+
+// The cells that arrived here in global order (by their smallest keys, whose ranks `global` holds),
+// with their facets.
 CellLevel ordered_level(Arrivals& a, const std::vector<std::uint32_t>& global, std::vector<std::uint32_t>& ids,
                         std::vector<double>* data) {
   a.found.release_index();  // (the keys are all it needs now)
-  const PackedKeyIndex& found = a.found;
-  const std::vector<std::uint64_t>& first = a.first;
-  std::vector<std::uint64_t>& incidences = a.incidences;
   const std::vector<double>& values = a.values;
-  const int words = found.words(), extra = a.extra;
-  const std::uint32_t n = found.size();
+  const int extra = a.extra;
+  const std::uint32_t n = a.found.size();
   std::vector<std::uint32_t> order(n), place(n);
-  std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return first[a] < first[b]; });
+  {
+    std::vector<std::uint64_t> by_id(n);
+    std::uint32_t largest = 0;
+    for (std::uint32_t i = 0; i < n; ++i) {
+      by_id[i] = std::uint64_t{global[i]} << 32 | i;
+      largest = std::max(largest, global[i]);
+    }
+    sort_by_high_word(by_id, std::bit_width(largest));
+    for (std::uint32_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(by_id[i]);
+  }
   CellLevel level;
-  level.simplices = PackedKeyIndex(words);
-  level.simplices.reserve(n);
+  level.simplices = PackedKeyIndex::unindexed_copy(a.found, order);
+  a.found = PackedKeyIndex(a.found.words());
   ids.resize(n);
   if (data) data->clear();
   for (std::uint32_t i = 0; i < n; ++i) {
-    level.simplices.insert(found.key(order[i]));
     ids[i] = global[order[i]];
     place[order[i]] = i;
     if (data)
       data->insert(data->end(), values.begin() + std::ptrdiff_t{order[i]} * extra,
                    values.begin() + std::ptrdiff_t{order[i] + 1} * extra);
   }
-  // Facet lists in global ids, increasing (as the single process finds them).
-  for (std::uint64_t& e : incidences) e = std::uint64_t{place[e >> 32]} << 32 | (e & 0xFFFFFFFFu);
-  std::sort(incidences.begin(), incidences.end());
+  // Facet lists in global ids, increasing (as the single process finds them): a counting sort by
+  // cell; a cell's facets found here come in increasing order, those from other ranks after them.
+  const std::vector<std::uint64_t>& incidences = a.incidences;
   level.facet_offsets.assign(n + 1, 0);
-  level.facet_ids.resize(incidences.size());
-  for (std::size_t i = 0; i < incidences.size(); ++i) {
-    ++level.facet_offsets[(incidences[i] >> 32) + 1];
-    level.facet_ids[i] = static_cast<std::uint32_t>(incidences[i]);
-  }
+  for (const std::uint64_t e : incidences) ++level.facet_offsets[place[e >> 32] + 1];
   for (std::uint32_t c = 0; c < n; ++c) level.facet_offsets[c + 1] += level.facet_offsets[c];
+  level.facet_ids.resize(incidences.size());
+  {
+    std::vector<std::uint32_t> next(level.facet_offsets.begin(), level.facet_offsets.end() - 1);
+    for (const std::uint64_t e : incidences) level.facet_ids[next[place[e >> 32]]++] = static_cast<std::uint32_t>(e);
+  }
+  for (std::uint32_t c = 0; c < n; ++c) {
+    const auto from = level.facet_ids.begin() + level.facet_offsets[c],
+               to = level.facet_ids.begin() + level.facet_offsets[c + 1];
+    if (!std::is_sorted(from, to)) std::sort(from, to);
+  }
+  std::vector<std::uint64_t>().swap(a.incidences);
   return level;
 }
 
@@ -180,13 +266,20 @@ CellLevel next_level(const CellLevel& prev, const std::vector<std::uint32_t>& pr
   const double no_values = 0;  // (no extra values at this level)
   CofaceEnumerator cofaces;
   std::uint32_t key[packed_words(kMaxDimension)];
+  // The owner of the last minimal vertex: a cell's cofaces mostly share theirs (owner_rank hashes).
+  std::uint32_t last_y[kMaxDimension];
+  int last_owner = -1;
   agreed(comm, [&] {
     for (std::uint32_t c = 0; c < prev.size(); ++c) {
       std::uint64_t discovery = std::uint64_t{prev_ids[c]} << 32;
       cofaces.reset(prev.simplices.simplex(c, d), l);
       while (const Simplex* nu = cofaces.next()) {
         pack(*nu, key);
-        arrivals.send(out, owner_of(key, d, ranks), comm.rank(), key, discovery++, &no_values);
+        if (last_owner < 0 || std::memcmp(key, last_y, sizeof(std::uint32_t) * d) != 0) {
+          std::memcpy(last_y, key, sizeof(std::uint32_t) * d);
+          last_owner = owner_of(key, d, ranks);
+        }
+        arrivals.send(out, last_owner, comm.rank(), key, discovery++, &no_values);
       }
     }
   });
@@ -241,6 +334,7 @@ CellComplexPart build_cell_complex_distributed(TracePart&& trace, Communicator& 
     level.simplices.release_index();
     if (has_boundary) {  // (a cut cell's boundary cell lies on the same simplex, hence here)
       level.boundary_facet.resize(level.size());
+      cc.boundary[j - 1].simplices.reindex();  // (settle gives keys only)
       for (std::uint32_t c = 0; c < level.size(); ++c) {
         const std::uint32_t b = cc.boundary[j - 1].simplices.find(level.simplices.key(c));
         level.boundary_facet[c] = b == PackedKeyIndex::kAbsent ? CellLevel::kNone : part.boundary_ids[j - 1][b];

@@ -46,6 +46,8 @@ struct Layout {
     local_start.assign(1, 0);
     for (int l = 0; l < levels(); ++l) {
       start.push_back(start.back() + size[l]);
+      lo_.push_back(first(l, rank));
+      hi_.push_back(first(l, rank + 1));
       local_start.push_back(local_start.back() + (hi(l) - lo(l)));
     }
   }
@@ -53,10 +55,13 @@ struct Layout {
   std::uint64_t total() const { return start.back(); }
   std::uint64_t local_count() const { return local_start.back(); }
   std::uint64_t first(int l, int r) const { return size[l] * static_cast<std::uint64_t>(r) / ranks; }
-  std::uint64_t lo(int l) const { return first(l, rank); }
-  std::uint64_t hi(int l) const { return first(l, rank + 1); }
-  int level_of(std::uint64_t g) const {
-    int l = 0;
+  // (kept, not divided again: local() runs several times per incidence)
+  std::uint64_t lo(int l) const { return lo_[l]; }
+  std::uint64_t hi(int l) const { return hi_[l]; }
+  // The level of global id g, at least `from` (a cell's facets are one or two levels below it, its
+  // ridges three or four: the scan then takes a step or two).
+  int level_of(std::uint64_t g, int from = 0) const {
+    int l = from;
     while (start[l + 1] <= g) ++l;  // (2(m + 1) levels: a short scan)
     return l;
   }
@@ -76,8 +81,9 @@ struct Layout {
     const int l = level_of(g);
     return owner(l, g - start[l]);
   }
-  std::uint32_t local(std::uint32_t g) const {
-    const int l = level_of(g);
+  std::uint32_t local(std::uint32_t g, int from = 0) const { return local_in(g, level_of(g, from)); }
+  // local(g) for g of level l.
+  std::uint32_t local_in(std::uint32_t g, int l) const {
     const std::uint64_t u = g - start[l];
     return u >= lo(l) && u < hi(l) ? static_cast<std::uint32_t>(local_start[l] + (u - lo(l))) : kRemote;
   }
@@ -85,6 +91,9 @@ struct Layout {
     const int l = local_level_of(i);
     return static_cast<std::uint32_t>(start[l] + lo(l) + (i - local_start[l]));
   }
+
+ private:
+  std::vector<std::uint64_t> lo_, hi_;  // this rank's range of each level
 };
 
 // This rank's ranges as one facet CSR over its cells (local indices), facets by global id.
@@ -396,18 +405,18 @@ TopologyReport analyze_topology_distributed(CellComplexPart&& part, Communicator
   std::vector<std::uint32_t> same_kind(n, 0), remote_cofaces(n, 0);
   {
     std::vector<Bytes> outgoing(comm.size());
-    for (std::uint32_t i = 0; i < n; ++i) {
-      const int l = layout.local_level_of(i);
-      for (std::uint32_t g : ranges.of(i)) {
-        const std::uint64_t same = layout.level_of(g) % 2 == l % 2;
-        if (const std::uint32_t f = layout.local(g); f != kRemote) {
-          same_kind[f] += static_cast<std::uint32_t>(same);
-        } else {
-          const std::uint64_t word = std::uint64_t{g} << 1 | same;
-          put(outgoing[layout.owner(g)], &word, 1);
+    for (int l = 2; l < layout.levels(); ++l)
+      for (std::uint64_t i = layout.local_start[l]; i < layout.local_start[l + 1]; ++i)
+        for (std::uint32_t g : ranges.of(i)) {
+          const int facet_level = layout.level_of(g, l - 2);
+          const std::uint64_t same = facet_level % 2 == l % 2;
+          if (const std::uint32_t f = layout.local_in(g, facet_level); f != kRemote) {
+            same_kind[f] += static_cast<std::uint32_t>(same);
+          } else {
+            const std::uint64_t word = std::uint64_t{g} << 1 | same;
+            put(outgoing[layout.owner(g)], &word, 1);
+          }
         }
-      }
-    }
     std::vector<std::size_t> counts;
     const Bytes in = comm.exchange(outgoing, counts);
     outgoing = {};
@@ -427,9 +436,10 @@ TopologyReport analyze_topology_distributed(CellComplexPart&& part, Communicator
   // meet in pairs (topology.cpp). The facet lists of facets held elsewhere are fetched.
   {
     std::vector<std::uint32_t> wanted;
-    for (std::uint64_t i = level_begin(4); i < n; ++i)
-      for (std::uint32_t g : ranges.of(i))
-        if (layout.local(g) == kRemote) wanted.push_back(g);
+    for (int l = 4; l < layout.levels(); ++l)
+      for (std::uint64_t i = layout.local_start[l]; i < layout.local_start[l + 1]; ++i)
+        for (std::uint32_t g : ranges.of(i))
+          if (layout.local(g, l - 2) == kRemote) wanted.push_back(g);
     sort_unique(wanted);
     std::uint64_t fetched = wanted.size();
     comm.sum(&fetched, 1);
@@ -451,8 +461,9 @@ TopologyReport analyze_topology_distributed(CellComplexPart&& part, Communicator
       for (const auto& from : asked)
         for (std::uint32_t g : from) ghost.emplace_back(g, static_cast<std::uint32_t>(at)), at += 1 + words[at];
       std::sort(ghost.begin(), ghost.end());
-      const auto facets_of = [&](std::uint32_t g) -> std::span<const std::uint32_t> {
-        if (const std::uint32_t f = layout.local(g); f != kRemote) return ranges.of(f);
+      // (from: the lowest level g may be of)
+      const auto facets_of = [&](std::uint32_t g, int from) -> std::span<const std::uint32_t> {
+        if (const std::uint32_t f = layout.local(g, from); f != kRemote) return ranges.of(f);
         const auto it = std::lower_bound(ghost.begin(), ghost.end(), std::make_pair(g, std::uint32_t{0}));
         return {words.data() + it->second + 1, words[it->second]};
       };
@@ -473,7 +484,7 @@ TopologyReport analyze_topology_distributed(CellComplexPart&& part, Communicator
           } else {
             ridges.clear();
             for (std::uint32_t f : facets)
-              for (std::uint32_t e : facets_of(f)) ridges.push_back(e);
+              for (std::uint32_t e : facets_of(f, l - 2)) ridges.push_back(e);
             std::sort(ridges.begin(), ridges.end());
             for (std::size_t k = 0; k < ridges.size() && why.empty(); k += 2)
               if (k + 1 == ridges.size() || ridges[k] != ridges[k + 1])
@@ -610,11 +621,15 @@ TopologyReport analyze_topology_distributed(CellComplexPart&& part, Communicator
   comm.sum(&removed_vertices, 1);
 
   // The reductions of each range, then rank 0's of what is left.
-  for (std::uint32_t& g : ranges.facets)
-    if (const std::uint32_t f = layout.local(g); f != kRemote)
-      g = f;
-    else
-      g |= kRemote;
+  for (int l = 2; l < layout.levels(); ++l)
+    for (std::uint64_t i = layout.local_start[l]; i < layout.local_start[l + 1]; ++i)
+      for (std::uint32_t k = ranges.offsets[i]; k < ranges.offsets[i + 1]; ++k) {
+        std::uint32_t& g = ranges.facets[k];
+        if (const std::uint32_t f = layout.local(g, l - 2); f != kRemote)
+          g = f;
+        else
+          g |= kRemote;
+      }
   Bytes left;
   std::uint64_t left_cells = 0;
   agreed(comm, [&] {

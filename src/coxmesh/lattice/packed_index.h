@@ -186,6 +186,19 @@ class PackedKeyIndex {
     probe_ = LinearProbe();
   }
   bool indexed() const { return !slots_.empty(); }
+  /// The keys of `from` in the order given (ids 0, 1, … of the copy), without a hash table: as after
+  /// release_index(), key() works and reindex() builds the table. (Reordering a level's keys
+  /// costs a copy, not an insertion per key.)
+  static PackedKeyIndex unindexed_copy(const PackedKeyIndex& from, std::span<const std::uint32_t> order) {
+    if (order.size() > kMaxEntries) throw InputError("more than 2^31 - 1 entries in one index");
+    PackedKeyIndex copy(from.words_);
+    copy.release_index();
+    const std::size_t w = static_cast<std::size_t>(from.words_);
+    copy.keys_.resize(order.size() * w);
+    for (std::size_t i = 0; i < order.size(); ++i) std::copy_n(from.key(order[i]), w, copy.keys_.data() + i * w);
+    copy.size_ = static_cast<std::uint32_t>(order.size());
+    return copy;
+  }
   /// Builds the hash table again after release_index().
   void reindex() {
     if (indexed()) return;

@@ -37,25 +37,32 @@ Found DistributedWalk::classify(const Simplex& tau) {
   std::uint32_t key[packed_words(kMaxDimension)];
   pack(tau, key);
   const std::uint64_t h = hash_words(key, words_);
-  const int owner = owner_rank(tau.y.data(), d_, ranks_);
+  // (the facets tested in a row mostly share their minimal vertex, hence its owner)
+  if (owner_of_y_ < 0 || std::memcmp(tau.y.data(), owner_y_, sizeof(std::int32_t) * d_) != 0) {
+    std::memcpy(owner_y_, tau.y.data(), sizeof(std::int32_t) * d_);
+    owner_of_y_ = owner_rank(tau.y.data(), d_, ranks_);
+  }
+  const int owner = owner_of_y_;
+  Slots slots;  // (where the test below inserts τ, found by these look-ups)
   if (owner == rank_) {
     if (const std::uint32_t id = mine_.find(key, h); id != PackedKeyIndex::kAbsent) return {Kind::inside, id};
-    if (const std::uint32_t id = next_.find(key, h); id != PackedKeyIndex::kAbsent) return {Kind::inside, id};
+    if (const std::uint32_t id = next_.find(key, h, slots.next); id != PackedKeyIndex::kAbsent)
+      return {Kind::inside, id};
   }
-  const std::uint32_t known = others_.find(key, h);
+  const std::uint32_t known = others_.find(key, h, slots.others);
   if (known != PackedKeyIndex::kAbsent) {
     const std::uint32_t p = other_payload_[known];
     if (p == kMiss) return {Kind::miss, 0};
     if (p == kRemoteInside) return {Kind::inside, 0};
     if (p != kUntested) return {Kind::outside, p};
   }
-  return test(key, h, tau, owner, known);
+  return test(key, h, tau, owner, known, slots);
 }
 
 // The oracle's answer on τ, kept where the walk will look for it. Each simplex tested is counted
 // once in the whole job, by its owner: when it tests it, or when another rank reports it.
 Found DistributedWalk::test(const std::uint32_t* key, std::uint64_t hash, const Simplex& tau, int owner,
-                            std::uint32_t known) {
+                            std::uint32_t known, const Slots& slots) {
   const bool owned = owner == rank_;
   if (owned && known == PackedKeyIndex::kAbsent) ++calls_;
   ++tests_;
@@ -63,7 +70,7 @@ Found DistributedWalk::test(const std::uint32_t* key, std::uint64_t hash, const 
   if (x.hit && x.domain < 0) {
     std::memcpy(fresh_key_, key, sizeof(std::uint32_t) * words_);
     if (owned) {
-      const std::uint32_t id = next_.insert(key, hash).first;
+      const std::uint32_t id = next_.insert_at(slots.next, key, hash);  // (absent: classify looked)
       next_keys_.push_back(discovery_);
       next_arrivals_.push_back(kNoCofacet);
       next_data_.insert(next_data_.end(), point_.begin(), point_.end());
@@ -71,7 +78,7 @@ Found DistributedWalk::test(const std::uint32_t* key, std::uint64_t hash, const 
       fresh_ = Fresh::owned, fresh_at_ = id;
       return {Kind::inside, id};
     }
-    others_.insert(key, hash);
+    others_.insert_at(slots.others, key, hash);  // (absent: classify looked, and τ is not ours)
     other_payload_.push_back(kRemoteInside);
     if (reporting_) {  // (in the seed search the owner tests it itself)
       std::vector<std::byte>& out = candidates_out_[owner];
@@ -92,7 +99,7 @@ Found DistributedWalk::test(const std::uint32_t* key, std::uint64_t hash, const 
     outside_.push_back(x.domain);
   }
   if (known == PackedKeyIndex::kAbsent) {
-    others_.insert(key, hash);
+    others_.insert_at(slots.others, key, hash);
     other_payload_.push_back(payload);
     if (!owned && reporting_) put(tested_out_[owner], key, words_);
   } else {

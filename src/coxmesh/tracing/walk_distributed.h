@@ -41,8 +41,13 @@ class DistributedWalk {
   static constexpr std::uint32_t kRemoteInside = 0xFFFFFFFEu;  // another rank's simplex of S
   static constexpr std::uint32_t kUntested = 0xFFFFFFFDu;      // ours, tested (and counted) by another rank
 
+  // Where an absent simplex goes in next_ and in others_ (PackedKeyIndex::find's slots).
+  struct Slots {
+    std::size_t next = 0, others = 0;
+  };
   Found classify(const Simplex& tau);
-  Found test(const std::uint32_t* key, std::uint64_t hash, const Simplex& tau, int owner, std::uint32_t known);
+  Found test(const std::uint32_t* key, std::uint64_t hash, const Simplex& tau, int owner, std::uint32_t known,
+             const Slots& slots);
   void set_fresh_arrival(std::uint64_t arrival);
   void walk_level();
   bool start_level();
@@ -96,6 +101,8 @@ class DistributedWalk {
   std::size_t fresh_at_ = 0;  // where its arrival code goes (next_ id, or byte offset in candidates_out_)
   std::uint32_t fresh_key_[packed_words(kMaxDimension)];
   std::vector<double> point_;
+  std::int32_t owner_y_[kMaxDimension] = {};  // the minimal vertex classify() last met, and its owner
+  int owner_of_y_ = -1;
   std::uint64_t calls_ = 0, tests_ = 0, evaluations_ = 0, vertex_values_sent_ = 0, candidates_sent_ = 0, levels_ = 0;
   std::size_t last_progress_ = 0;
   bool stopped_ = false;

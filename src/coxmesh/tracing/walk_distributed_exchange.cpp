@@ -112,10 +112,19 @@ void DistributedWalk::fetch_vertex_values(const std::vector<std::int32_t>& verti
   PackedKeyIndex asked(d_);
   std::exception_ptr failure;
   try {
-    for (std::size_t i = 0; i < vertices.size(); i += d_) {
-      const std::int32_t* v = vertices.data() + i;
+    // Hashed first, so that the look-ups (mostly of vertices known already: a level lists each
+    // vertex many times) fetch their slots ahead.
+    constexpr std::size_t kAhead = 16;
+    const std::size_t n = vertices.size() / d_;
+    std::vector<std::uint64_t> hashes(n);
+    for (std::size_t i = 0; i < n; ++i)
+      hashes[i] = hash_words(reinterpret_cast<const std::uint32_t*>(vertices.data() + i * d_), d_);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (i + kAhead < n) known_vertices_.prefetch(hashes[i + kAhead]);
+      if (i + kAhead / 2 < n) known_vertices_.prefetch_key(hashes[i + kAhead / 2]);
+      const std::int32_t* v = vertices.data() + i * d_;
       const auto* key = reinterpret_cast<const std::uint32_t*>(v);
-      const std::uint64_t h = hash_words(key, d_);
+      const std::uint64_t h = hashes[i];
       if (known_vertices_.find(key, h) != PackedKeyIndex::kAbsent) continue;
       const int owner = owner_rank(v, d_, ranks_);
       if (owner == rank_)
