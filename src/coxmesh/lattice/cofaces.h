@@ -102,6 +102,48 @@ inline void CofaceEnumerator::gray_step() {
   xor_word(byte >> 2, std::uint32_t{label_toggle_} << 8 * (byte & 3));
 }
 
+/// The cofacets of the simplex with packed key `key` (packed_words(d) words, simplex.h), as packed
+/// keys, in the order of CofaceEnumerator(unpack(key, d), k + 1): emit(const std::uint32_t* cofacet)
+/// is called with a view of a working key, valid during the call. The same block splits in Gray-code
+/// order (thesis §3.5), written straight into the packed form: one label byte (and, after a rotation,
+/// one y word) changes per cofacet, with no Simplex to copy or pack. For the cell complex, whose
+/// levels are cofacets of the level below (thesis §4.2).
+template <class Emit>
+void for_each_packed_cofacet(const std::uint32_t* key, int d, Emit&& emit) {
+  const std::uint32_t* labels = key + d;
+  const auto label = [labels](int i) { return static_cast<int>((labels[i >> 2] >> 8 * (i & 3)) & 0xFFu); };
+  const int k = label(d), label_words = (d + 1 + 3) / 4;
+  std::uint32_t members[kMaxDimension + 1] = {};  // block b as a bit set of its elements
+  for (int i = 0; i <= d; ++i) members[label(i)] |= std::uint32_t{1} << i;
+  std::uint32_t cur[packed_words(kMaxDimension)];
+  for (int b = k; b >= 0; --b) {
+    const int n = std::popcount(members[b]);
+    if (n < 2) continue;
+    std::uint8_t moving[kMaxDimension + 1];  // the block's elements but its last, increasing
+    std::uint32_t rest = members[b];
+    for (int j = 0; j + 1 < n; ++j, rest &= rest - 1) moving[j] = static_cast<std::uint8_t>(std::countr_zero(rest));
+    for (int half = 0; half < 2; ++half) {
+      // As CofaceEnumerator::start_split: labels ≥ θ rise by one, the moving set gets label θ.
+      const int theta = half == 0 ? b : b < k ? b + 1 : 0;
+      const std::uint32_t toggle = static_cast<std::uint32_t>(theta ^ (b + (b >= theta)));
+      const bool rotated = theta == 0 && half == 1;
+      for (int i = 0; i < d; ++i) cur[i] = key[i];
+      for (int w = 0; w < label_words; ++w) cur[d + w] = 0;
+      for (int i = 0; i <= d; ++i) {
+        const int raised = label(i) + (label(i) >= theta);
+        cur[d + (i >> 2)] |= static_cast<std::uint32_t>(raised) << 8 * (i & 3);
+      }
+      const std::uint32_t steps = (std::uint32_t{1} << (n - 1)) - 1;
+      for (std::uint32_t step = 1; step <= steps; ++step) {
+        const int i = moving[std::countr_zero(step)];
+        cur[d + (i >> 2)] ^= toggle << 8 * (i & 3);
+        if (rotated) cur[i] ^= key[i] ^ (key[i] - 1);  // y_i ↔ y_i − 1
+        emit(static_cast<const std::uint32_t*>(cur));
+      }
+    }
+  }
+}
+
 /// Number of l-cofaces of τ (thesis §3.5): Σ over cut vectors of Π_i a(n_i, c_i + 1), where
 /// a(n, j) = j!·S(n, j) counts ordered partitions. Throws InputError only if the count, or a term
 /// it needs, exceeds 64 bits (e.g. the 21! maximal cofaces of a vertex in d = 20); cofacet counts
