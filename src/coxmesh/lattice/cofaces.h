@@ -1,6 +1,7 @@
 // Thesis §3.5 (cofaces of a permutahedral simplex).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cstddef>
@@ -113,9 +114,11 @@ void for_each_packed_cofacet(const std::uint32_t* key, int d, Emit&& emit) {
   const std::uint32_t* labels = key + d;
   const auto label = [labels](int i) { return static_cast<int>((labels[i >> 2] >> 8 * (i & 3)) & 0xFFu); };
   const int k = label(d), label_words = (d + 1 + 3) / 4;
-  std::uint32_t members[kMaxDimension + 1] = {};  // block b as a bit set of its elements
+  std::uint32_t members[kMaxDimension + 1];  // block b as a bit set of its elements
+  for (int b = 0; b <= k; ++b) members[b] = 0;
   for (int i = 0; i <= d; ++i) members[label(i)] |= std::uint32_t{1} << i;
   std::uint32_t cur[packed_words(kMaxDimension)];
+  for (int i = 0; i < d; ++i) cur[i] = key[i];
   for (int b = k; b >= 0; --b) {
     const int n = std::popcount(members[b]);
     if (n < 2) continue;
@@ -127,11 +130,13 @@ void for_each_packed_cofacet(const std::uint32_t* key, int d, Emit&& emit) {
       const int theta = half == 0 ? b : b < k ? b + 1 : 0;
       const std::uint32_t toggle = static_cast<std::uint32_t>(theta ^ (b + (b >= theta)));
       const bool rotated = theta == 0 && half == 1;
-      for (int i = 0; i < d; ++i) cur[i] = key[i];
-      for (int w = 0; w < label_words; ++w) cur[d + w] = 0;
-      for (int i = 0; i <= d; ++i) {
-        const int raised = label(i) + (label(i) >= theta);
-        cur[d + (i >> 2)] |= static_cast<std::uint32_t>(raised) << 8 * (i & 3);
+      // Four labels (≤ 31) at a time: a byte ≥ θ gets its high bit from byte + 128 − θ; the zero
+      // bytes after label d stay zero.
+      const std::uint32_t below_theta = 0x01010101u * static_cast<std::uint32_t>(0x80 - theta);
+      for (int w = 0; w < label_words; ++w) {
+        const int used = std::min(4, d + 1 - 4 * w);
+        const std::uint32_t in_use = used == 4 ? ~0u : (std::uint32_t{1} << 8 * used) - 1;
+        cur[d + w] = labels[w] + ((((labels[w] + below_theta) & 0x80808080u) >> 7) & in_use);
       }
       const std::uint32_t steps = (std::uint32_t{1} << (n - 1)) - 1;
       for (std::uint32_t step = 1; step <= steps; ++step) {
@@ -140,6 +145,8 @@ void for_each_packed_cofacet(const std::uint32_t* key, int d, Emit&& emit) {
         if (rotated) cur[i] ^= key[i] ^ (key[i] - 1);  // y_i ↔ y_i − 1
         emit(static_cast<const std::uint32_t*>(cur));
       }
+      if (rotated)  // (y back for the blocks after)
+        for (int j = 0; j + 1 < n; ++j) cur[moving[j]] = key[moving[j]];
     }
   }
 }
