@@ -197,7 +197,14 @@ void orient_polygons(Ragged& polygons, const Ragged& edges, std::uint32_t edge_c
     std::uint8_t count = 0;
   };
   std::vector<Uses> uses(edge_count);
+  // The passes below jump around memory (the breadth-first order is spatial, the arrays are in
+  // discovery order): what a polygon a few steps ahead will read is prefetched.
+  constexpr std::size_t kAhead = 8;
+  const auto prefetch_uses = [&](std::uint32_t p) {
+    for (std::uint32_t e : edges[p]) __builtin_prefetch(&uses[e]);
+  };
   for (std::uint32_t p = first; p < n; ++p) {
+    if (p + kAhead < n) prefetch_uses(p + static_cast<std::uint32_t>(kAhead));
     const auto cycle = polygons[p];
     const auto cycle_edges = edges[p];
     for (std::size_t i = 0; i < cycle.size(); ++i) {
@@ -220,6 +227,12 @@ void orient_polygons(Ragged& polygons, const Ragged& edges, std::uint32_t edge_c
     state[start] = 1;
     component.assign(1, start);
     for (std::size_t head = 0; head < component.size(); ++head) {
+      if (head + kAhead < component.size()) {  // (its edge list first, then, nearer, its uses)
+        const std::uint32_t ahead = component[head + kAhead];
+        __builtin_prefetch(edges.items.data() + edges.offsets[ahead]);
+        __builtin_prefetch(&state[ahead]);
+      }
+      if (head + kAhead / 2 < component.size()) prefetch_uses(component[head + kAhead / 2]);
       const std::uint32_t p = component[head];
       for (std::uint32_t e : edges[p]) {
         const Uses& u = uses[e];
@@ -236,7 +249,10 @@ void orient_polygons(Ragged& polygons, const Ragged& edges, std::uint32_t edge_c
     bool flip_all = false;
     if (points3) {  // signed volume of the cone from the origin over the component's fan triangles
       double volume = 0;
-      for (std::uint32_t p : component) {
+      for (std::size_t i = 0; i < component.size(); ++i) {
+        if (i + kAhead < component.size())
+          for (std::uint32_t v : polygons[component[i + kAhead]]) __builtin_prefetch(points3 + 3 * std::size_t{v});
+        const std::uint32_t p = component[i];
         // The fan of the cycle as it will be written: a reversed one is read as c0, c(k−1), …, c1.
         const auto cycle = polygons[p];
         const std::size_t k = cycle.size();
@@ -252,8 +268,15 @@ void orient_polygons(Ragged& polygons, const Ragged& edges, std::uint32_t edge_c
       }
       flip_all = volume < 0;
     }
-    for (std::uint32_t p : component)
+    for (std::size_t i = 0; i < component.size(); ++i) {
+      if (i + kAhead < component.size()) {
+        const std::uint32_t ahead = component[i + kAhead];
+        __builtin_prefetch(&state[ahead]);
+        __builtin_prefetch(polygons.items.data() + polygons.offsets[ahead], 1);
+      }
+      const std::uint32_t p = component[i];
       if ((state[p] == 2) != flip_all) reverse(p);
+    }
   }
 }
 
