@@ -199,6 +199,7 @@ void expect_packed_cofacets_as_enumerated(const Simplex& s) {
   pack(s, key.data());
   for_each_packed_cofacet(key.data(), d, [&](const std::uint32_t* c) { found.insert(found.end(), c, c + words); });
   EXPECT_EQ(found, expected) << s;
+  EXPECT_EQ(packed_cofacet_count(key.data(), d), expected.size() / words) << s;
 }
 
 TEST(Cofaces, PackedCofacetsInEnumeratorOrderForEveryTypeUpToDimension7) {

@@ -96,8 +96,16 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
       out.facets.push_back(c);
     };
     for (std::uint32_t c = a; c < b; ++c) {
-      if (cofacets) {  // (straight from the packed key: the usual case)
-        for_each_packed_cofacet(prev.simplices.key(c), d, [&](const std::uint32_t* nu) { add(nu, c); });
+      if (cofacets) {  // (straight from the packed key, into arrays grown once per cell: the usual case)
+        const std::uint32_t* tau = prev.simplices.key(c);
+        const std::size_t first = out.hashes.size(), count = packed_cofacet_count(tau, d);
+        out.keys.resize((first + count) * words), out.hashes.resize(first + count), out.facets.resize(first + count, c);
+        std::uint32_t* keys = out.keys.data() + first * words;
+        std::uint64_t* hashes = out.hashes.data() + first;
+        for_each_packed_cofacet(tau, d, [&](const std::uint32_t* nu) {
+          for (int i = 0; i < words; ++i) *keys++ = nu[i];
+          *hashes++ = hash_words(nu, words);
+        });
         continue;
       }
       cofaces.reset(prev.simplices.simplex(c, d), l);

@@ -109,22 +109,43 @@ inline void CofaceEnumerator::gray_step() {
 /// order (thesis §3.5), written straight into the packed form: one label byte (and, after a rotation,
 /// one y word) changes per cofacet, with no Simplex to copy or pack. For the cell complex, whose
 /// levels are cofacets of the level below (thesis §4.2).
+namespace packed_detail {
+inline int label(const std::uint32_t* key, int d, int i) {
+  return static_cast<int>((key[d + (i >> 2)] >> 8 * (i & 3)) & 0xFFu);
+}
+// The number of elements of each block of the packed simplex (a plain count: std::popcount of a
+// bit set is a library call on baseline x86-64).
+inline void block_sizes(const std::uint32_t* key, int d, std::uint8_t (&sizes)[kMaxDimension + 1]) {
+  for (int b = 0; b <= kMaxDimension; ++b) sizes[b] = 0;
+  for (int i = 0; i <= d; ++i) ++sizes[label(key, d, i)];
+}
+}  // namespace packed_detail
+
+/// The number of cofacets of the simplex with packed key `key`: Σ 2^n − 2 over its blocks of n
+/// elements (a block splits into two ordered non-empty parts).
+inline std::size_t packed_cofacet_count(const std::uint32_t* key, int d) {
+  std::uint8_t sizes[kMaxDimension + 1];
+  packed_detail::block_sizes(key, d, sizes);
+  std::size_t count = 0;
+  for (int b = 0, k = packed_detail::label(key, d, d); b <= k; ++b) count += (std::size_t{1} << sizes[b]) - 2;
+  return count;
+}
+
 template <class Emit>
 void for_each_packed_cofacet(const std::uint32_t* key, int d, Emit&& emit) {
   const std::uint32_t* labels = key + d;
-  const auto label = [labels](int i) { return static_cast<int>((labels[i >> 2] >> 8 * (i & 3)) & 0xFFu); };
+  const auto label = [key, d](int i) { return packed_detail::label(key, d, i); };
   const int k = label(d), label_words = (d + 1 + 3) / 4;
-  std::uint32_t members[kMaxDimension + 1];  // block b as a bit set of its elements
-  for (int b = 0; b <= k; ++b) members[b] = 0;
-  for (int i = 0; i <= d; ++i) members[label(i)] |= std::uint32_t{1} << i;
+  std::uint8_t sizes[kMaxDimension + 1];
+  packed_detail::block_sizes(key, d, sizes);
   std::uint32_t cur[packed_words(kMaxDimension)];
   for (int i = 0; i < d; ++i) cur[i] = key[i];
   for (int b = k; b >= 0; --b) {
-    const int n = std::popcount(members[b]);
+    const int n = sizes[b];
     if (n < 2) continue;
     std::uint8_t moving[kMaxDimension + 1];  // the block's elements but its last, increasing
-    std::uint32_t rest = members[b];
-    for (int j = 0; j + 1 < n; ++j, rest &= rest - 1) moving[j] = static_cast<std::uint8_t>(std::countr_zero(rest));
+    for (int i = 0, j = 0; j + 1 < n; ++i)
+      if (label(i) == b) moving[j++] = static_cast<std::uint8_t>(i);
     for (int half = 0; half < 2; ++half) {
       // As CofaceEnumerator::start_split: labels ≥ θ rise by one, the moving set gets label θ.
       const int theta = half == 0 ? b : b < k ? b + 1 : 0;
