@@ -233,7 +233,7 @@ void orient_polygons(Ragged& polygons, const Ragged& edges, std::uint32_t edge_c
   auto reverse = [&](std::uint32_t p) {
     std::reverse(polygons.items.begin() + polygons.offsets[p] + 1, polygons.items.begin() + polygons.offsets[p + 1]);
   };
-  std::vector<std::uint8_t> state(n, 0);  // 0 unvisited, 1 kept, 2 reversed
+  std::vector<std::uint8_t> state(n, 0);  // 0 unvisited, 1 kept, 2 reversed (its component turned outwards)
   std::vector<std::uint32_t> component;   // breadth-first queue, then the component
   for (std::uint32_t start = first; start < n; ++start) {
     if (state[start] || polygons[start].empty()) continue;
@@ -281,16 +281,12 @@ void orient_polygons(Ragged& polygons, const Ragged& edges, std::uint32_t edge_c
       }
       flip_all = volume < 0;
     }
-    for (std::size_t i = 0; i < component.size(); ++i) {
-      if (i + kAhead < component.size()) {
-        const std::uint32_t ahead = component[i + kAhead];
-        __builtin_prefetch(&state[ahead]);
-        __builtin_prefetch(polygons.items.data() + polygons.offsets[ahead], 1);
-      }
-      const std::uint32_t p = component[i];
-      if ((state[p] == 2) != flip_all) reverse(p);
-    }
+    if (flip_all)
+      for (std::uint32_t p : component) state[p] = static_cast<std::uint8_t>(3 - state[p]);
   }
+  // The reversals in the order of the polygons, after the walks: one pass through their lists.
+  for (std::uint32_t p = first; p < n; ++p)
+    if (state[p] == 2) reverse(p);
 }
 
 }  // namespace coxmesh
