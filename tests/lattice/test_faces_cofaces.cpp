@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <map>
+#include <random>
 #include <set>
 
 #include "coxmesh/lattice/cofaces.h"
@@ -183,6 +184,61 @@ TEST(Cofaces, CountFormulaForEverySimplexTypeUpToDimension6) {
       EXPECT_EQ(coface_count(s, d), maximal_formula);
     }
   }
+}
+
+// The packed walk must give CofaceEnumerator's cofacets in CofaceEnumerator's order: the cell
+// complex numbers its cells by it.
+void expect_packed_cofacets_as_enumerated(const Simplex& s) {
+  const int d = s.d, words = packed_words(d);
+  std::vector<std::uint32_t> expected, found, key(words);
+  CofaceEnumerator e(s, s.k + 1);
+  for (Simplex c; e.next(c);) {
+    pack(c, key.data());
+    expected.insert(expected.end(), key.begin(), key.end());
+  }
+  pack(s, key.data());
+  for_each_packed_cofacet(key.data(), d, [&](const std::uint32_t* c) { found.insert(found.end(), c, c + words); });
+  EXPECT_EQ(found, expected) << s;
+  EXPECT_EQ(packed_cofacet_count(key.data(), d), expected.size() / words) << s;
+}
+
+TEST(Cofaces, PackedCofacetsInEnumeratorOrderForEveryTypeUpToDimension7) {
+  for (int d = 1; d <= 7; ++d)
+    for (unsigned cuts = 0; cuts + 1 < (1u << d); ++cuts) {  // (the last type, k = d, has no cofacets)
+      // Every composition of d + 1 into blocks (d's block last), the others in several orders.
+      std::vector<std::vector<int>> blocks{{0}};
+      for (int i = 1; i <= d; ++i) {
+        if (cuts >> (i - 1) & 1)
+          blocks.push_back({i});
+        else
+          blocks.back().push_back(i);
+      }
+      std::vector<std::int32_t> y(d);
+      for (int i = 0; i < d; ++i) y[i] = (i % 3 == 0 ? -1 : 1) * (i + 1) * 1000 - (i % 2);
+      for (std::size_t r = 0; r < blocks.size(); ++r) {
+        expect_packed_cofacets_as_enumerated(Simplex::from_partition(y, blocks));
+        if (blocks.size() >= 3) std::rotate(blocks.begin(), blocks.begin() + 1, blocks.end() - 1);
+      }
+    }
+}
+
+TEST(Cofaces, PackedCofacetsInEnumeratorOrderUpToTheLargestDimension) {
+  std::mt19937 rng(3);
+  for (int d : {8, 9, 12, 16, 20, 31})
+    for (int trial = 0; trial < 40; ++trial) {
+      std::vector<std::int32_t> y(d);
+      for (auto& c : y) c = std::uniform_int_distribution<int>(-kMaxLatticeCoordinate + 1, kMaxLatticeCoordinate)(rng);
+      std::vector<int> order(d);
+      for (int i = 0; i < d; ++i) order[i] = i;
+      std::shuffle(order.begin(), order.end(), rng);
+      // (k near d: a block of n elements has 2^n − 2 cofacets)
+      const int k = d - std::uniform_int_distribution<int>(1, 6)(rng);
+      std::vector<std::vector<int>> blocks(k + 1);
+      blocks[k].push_back(d);
+      for (int b = 0; b < k; ++b) blocks[b].push_back(order[b]);
+      for (int i = k; i < d; ++i) blocks[std::uniform_int_distribution<int>(0, k)(rng)].push_back(order[i]);
+      expect_packed_cofacets_as_enumerated(Simplex::from_partition(y, blocks));
+    }
 }
 
 TEST(FacesCofaces, BruteForceOnABoxUpToDimension4) {

@@ -64,6 +64,8 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
   const std::uint32_t chunks_per_batch = std::clamp<std::uint32_t>(prev.size() / (32 * kChunk), 1, kMaxChunksPerBatch);
   const std::uint32_t batch_cells = kChunk * chunks_per_batch;
   const int words = packed_words(d);
+  // Level j's simplices are the cofacets of level j − 1's (l = k + j, those have dimension l − 1).
+  const bool cofacets = prev.size() > 0 && prev.simplices.simplex(0, d).k + 1 == l;
   struct alignas(64) Chunk {  // (padded: neighbouring chunks are filled by different workers)
     std::vector<std::uint32_t> keys, facets, ids;
     std::vector<std::uint64_t> hashes;
@@ -88,13 +90,28 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
     std::uint32_t key[packed_words(kMaxDimension)];
     const std::uint32_t a = static_cast<std::uint32_t>(batch * batch_cells + t * kChunk);
     const std::uint32_t b = std::min(prev.size(), a + kChunk);
+    const auto add = [&](const std::uint32_t* nu, std::uint32_t c) {
+      for (int i = 0; i < words; ++i) out.keys.push_back(nu[i]);  // (a few words: no call to copy them)
+      out.hashes.push_back(hash_words(nu, words));
+      out.facets.push_back(c);
+    };
     for (std::uint32_t c = a; c < b; ++c) {
+      if (cofacets) {  // (straight from the packed key, into arrays grown once per cell: the usual case)
+        const std::uint32_t* tau = prev.simplices.key(c);
+        const std::size_t first = out.hashes.size(), count = packed_cofacet_count(tau, d);
+        out.keys.resize((first + count) * words), out.hashes.resize(first + count), out.facets.resize(first + count, c);
+        std::uint32_t* keys = out.keys.data() + first * words;
+        std::uint64_t* hashes = out.hashes.data() + first;
+        for_each_packed_cofacet(tau, d, [&](const std::uint32_t* nu) {
+          for (int i = 0; i < words; ++i) *keys++ = nu[i];
+          *hashes++ = hash_words(nu, words);
+        });
+        continue;
+      }
       cofaces.reset(prev.simplices.simplex(c, d), l);
       while (const Simplex* nu = cofaces.next()) {
         pack(*nu, key);
-        for (int i = 0; i < words; ++i) out.keys.push_back(key[i]);  // (a few words: no call to copy them)
-        out.hashes.push_back(hash_words(key, words));
-        out.facets.push_back(c);
+        add(key, c);
       }
     }
     out.ids.resize(out.hashes.size());

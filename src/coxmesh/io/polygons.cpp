@@ -94,7 +94,7 @@ Ragged polygon_cycles(const CellComplex& cc, Ragged* cycle_edges) {
   Ragged cycles;
   const IndexArray ends = edge_end_pairs(cc);
   const std::uint32_t n1 = cell_count(cc, CellKind::interior, 1);
-  std::vector<std::uint32_t> list, cycle, cycle_edge, first_end, second_end;
+  std::vector<std::uint32_t> list, first_end, second_end;
   std::vector<std::uint8_t> used;
   std::size_t polygons = 0, corners = 0;  // (sizes known: the arrays grow once)
   for (CellKind kind : {CellKind::interior, CellKind::boundary})
@@ -102,6 +102,11 @@ Ragged polygon_cycles(const CellComplex& cc, Ragged* cycle_edges) {
       polygons += level->size(), corners += level->facet_ids.size() + level->boundary_facet.size();
   for (Ragged* r : {&cycles, cycle_edges})
     if (r) r->offsets.reserve(polygons + 1), r->items.reserve(corners);
+  // The cycle and its edges are appended as they are found, and taken back if they do not close.
+  const auto close_list = [](Ragged& r, bool closed) {
+    if (!closed) r.items.resize(r.offsets.back());
+    r.offsets.push_back(static_cast<std::uint32_t>(r.items.size()));
+  };
   for (CellKind kind : {CellKind::interior, CellKind::boundary}) {
     const CellLevel* level = cell_level(cc, kind, 2);
     if (!level) continue;
@@ -111,37 +116,45 @@ Ragged polygon_cycles(const CellComplex& cc, Ragged* cycle_edges) {
       if (!as_listed) facets_of(*level, kind, c, n1, list);
       const std::span<const std::uint32_t> edges = as_listed ? level->facets(c) : std::span<const std::uint32_t>(list);
       const std::size_t n = edges.size();
-      cycle.clear();
       bool closed = n >= 3;
-      first_end.resize(n), second_end.resize(n);
+      // (a polygon has a few edges as a rule: their ends on the stack)
+      constexpr std::size_t kFew = 16;
+      std::uint32_t few_ends[2 * kFew];
+      std::uint8_t few_used[kFew];
+      if (n > kFew) first_end.resize(n), second_end.resize(n), used.resize(n);
+      std::uint32_t* first = n > kFew ? first_end.data() : few_ends;
+      std::uint32_t* second = n > kFew ? second_end.data() : few_ends + kFew;
+      std::uint8_t* in_cycle = n > kFew ? used.data() : few_used;
       for (std::size_t i = 0; i < n && closed; ++i) {
-        first_end[i] = ends[2 * std::size_t{edges[i]}], second_end[i] = ends[2 * std::size_t{edges[i]} + 1];
-        closed = first_end[i] != CellLevel::kNone;
+        first[i] = ends[2 * std::size_t{edges[i]}], second[i] = ends[2 * std::size_t{edges[i]} + 1];
+        closed = first[i] != CellLevel::kNone;
       }
       if (closed) {
         // Walk: from the second end of the first edge, repeatedly take the unused edge at the
         // current vertex. A convex polygon has few edges, so the quadratic search is cheap.
-        used.assign(n, 0);
-        used[0] = 1;
-        cycle.push_back(first_end[0]);
-        cycle_edge.assign(1, edges[0]);
-        std::uint32_t current = second_end[0];
-        while (current != cycle.front() && closed) {
-          cycle.push_back(current);
+        std::fill_n(in_cycle, n, std::uint8_t{0});
+        in_cycle[0] = 1;
+        const std::uint32_t start = first[0];
+        std::size_t length = 1;
+        cycles.items.push_back(start);
+        if (cycle_edges) cycle_edges->items.push_back(edges[0]);
+        std::uint32_t current = second[0];
+        while (current != start && closed) {
+          cycles.items.push_back(current);
+          ++length;
           closed = false;
           for (std::size_t i = 0; i < n && !closed; ++i) {
-            if (used[i] || (first_end[i] != current && second_end[i] != current)) continue;
-            used[i] = 1;
-            cycle_edge.push_back(edges[i]);
-            current = first_end[i] == current ? second_end[i] : first_end[i];
+            if (in_cycle[i] || (first[i] != current && second[i] != current)) continue;
+            in_cycle[i] = 1;
+            if (cycle_edges) cycle_edges->items.push_back(edges[i]);
+            current = first[i] == current ? second[i] : first[i];
             closed = true;
           }
         }
-        closed = closed && cycle.size() == n && std::all_of(used.begin(), used.end(), [](std::uint8_t u) { return u; });
+        closed = closed && length == n && std::all_of(in_cycle, in_cycle + n, [](std::uint8_t u) { return u; });
       }
-      if (!closed) cycle.clear(), cycle_edge.clear();
-      cycles.push(cycle);
-      if (cycle_edges) cycle_edges->push(cycle_edge);
+      close_list(cycles, closed);
+      if (cycle_edges) close_list(*cycle_edges, closed);
     }
   }
   return cycles;
@@ -197,7 +210,14 @@ void orient_polygons(Ragged& polygons, const Ragged& edges, std::uint32_t edge_c
     std::uint8_t count = 0;
   };
   std::vector<Uses> uses(edge_count);
+  // The passes below jump around memory (the breadth-first order is spatial, the arrays are in
+  // discovery order): what a polygon a few steps ahead will read is prefetched.
+  constexpr std::size_t kAhead = 8;
+  const auto prefetch_uses = [&](std::uint32_t p) {
+    for (std::uint32_t e : edges[p]) __builtin_prefetch(&uses[e]);
+  };
   for (std::uint32_t p = first; p < n; ++p) {
+    if (p + kAhead < n) prefetch_uses(p + static_cast<std::uint32_t>(kAhead));
     const auto cycle = polygons[p];
     const auto cycle_edges = edges[p];
     for (std::size_t i = 0; i < cycle.size(); ++i) {
@@ -213,13 +233,19 @@ void orient_polygons(Ragged& polygons, const Ragged& edges, std::uint32_t edge_c
   auto reverse = [&](std::uint32_t p) {
     std::reverse(polygons.items.begin() + polygons.offsets[p] + 1, polygons.items.begin() + polygons.offsets[p + 1]);
   };
-  std::vector<std::uint8_t> state(n, 0);  // 0 unvisited, 1 kept, 2 reversed
+  std::vector<std::uint8_t> state(n, 0);  // 0 unvisited, 1 kept, 2 reversed (its component turned outwards)
   std::vector<std::uint32_t> component;   // breadth-first queue, then the component
   for (std::uint32_t start = first; start < n; ++start) {
     if (state[start] || polygons[start].empty()) continue;
     state[start] = 1;
     component.assign(1, start);
     for (std::size_t head = 0; head < component.size(); ++head) {
+      if (head + kAhead < component.size()) {  // (its edge list first, then, nearer, its uses)
+        const std::uint32_t ahead = component[head + kAhead];
+        __builtin_prefetch(edges.items.data() + edges.offsets[ahead]);
+        __builtin_prefetch(&state[ahead]);
+      }
+      if (head + kAhead / 2 < component.size()) prefetch_uses(component[head + kAhead / 2]);
       const std::uint32_t p = component[head];
       for (std::uint32_t e : edges[p]) {
         const Uses& u = uses[e];
@@ -236,7 +262,10 @@ void orient_polygons(Ragged& polygons, const Ragged& edges, std::uint32_t edge_c
     bool flip_all = false;
     if (points3) {  // signed volume of the cone from the origin over the component's fan triangles
       double volume = 0;
-      for (std::uint32_t p : component) {
+      for (std::size_t i = 0; i < component.size(); ++i) {
+        if (i + kAhead < component.size())
+          for (std::uint32_t v : polygons[component[i + kAhead]]) __builtin_prefetch(points3 + 3 * std::size_t{v});
+        const std::uint32_t p = component[i];
         // The fan of the cycle as it will be written: a reversed one is read as c0, c(k−1), …, c1.
         const auto cycle = polygons[p];
         const std::size_t k = cycle.size();
@@ -252,9 +281,12 @@ void orient_polygons(Ragged& polygons, const Ragged& edges, std::uint32_t edge_c
       }
       flip_all = volume < 0;
     }
-    for (std::uint32_t p : component)
-      if ((state[p] == 2) != flip_all) reverse(p);
+    if (flip_all)
+      for (std::uint32_t p : component) state[p] = static_cast<std::uint8_t>(3 - state[p]);
   }
+  // The reversals in the order of the polygons, after the walks: one pass through their lists.
+  for (std::uint32_t p = first; p < n; ++p)
+    if (state[p] == 2) reverse(p);
 }
 
 }  // namespace coxmesh

@@ -1,6 +1,7 @@
 // Thesis §3.5 (cofaces of a permutahedral simplex).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cstddef>
@@ -100,6 +101,75 @@ inline void CofaceEnumerator::gray_step() {
   if (y_toggle_) xor_word(i, y ^ (y - 1));  // only after a rotation; the same in a whole half
   const int byte = static_cast<int>(offsetof(Simplex, block)) + i;
   xor_word(byte >> 2, std::uint32_t{label_toggle_} << 8 * (byte & 3));
+}
+
+/// The cofacets of the simplex with packed key `key` (packed_words(d) words, simplex.h), as packed
+/// keys, in the order of CofaceEnumerator(unpack(key, d), k + 1): emit(const std::uint32_t* cofacet)
+/// is called with a view of a working key, valid during the call. The same block splits in Gray-code
+/// order (thesis §3.5), written straight into the packed form: one label byte (and, after a rotation,
+/// one y word) changes per cofacet, with no Simplex to copy or pack. For the cell complex, whose
+/// levels are cofacets of the level below (thesis §4.2).
+namespace packed_detail {
+inline int label(const std::uint32_t* key, int d, int i) {
+  return static_cast<int>((key[d + (i >> 2)] >> 8 * (i & 3)) & 0xFFu);
+}
+// The number of elements of each block of the packed simplex (a plain count: std::popcount of a
+// bit set is a library call on baseline x86-64).
+inline void block_sizes(const std::uint32_t* key, int d, std::uint8_t (&sizes)[kMaxDimension + 1]) {
+  for (int b = 0; b <= kMaxDimension; ++b) sizes[b] = 0;
+  for (int i = 0; i <= d; ++i) ++sizes[label(key, d, i)];
+}
+}  // namespace packed_detail
+
+/// The number of cofacets of the simplex with packed key `key`: Σ 2^n − 2 over its blocks of n
+/// elements (a block splits into two ordered non-empty parts).
+inline std::size_t packed_cofacet_count(const std::uint32_t* key, int d) {
+  std::uint8_t sizes[kMaxDimension + 1];
+  packed_detail::block_sizes(key, d, sizes);
+  std::size_t count = 0;
+  for (int b = 0, k = packed_detail::label(key, d, d); b <= k; ++b) count += (std::size_t{1} << sizes[b]) - 2;
+  return count;
+}
+
+template <class Emit>
+void for_each_packed_cofacet(const std::uint32_t* key, int d, Emit&& emit) {
+  const std::uint32_t* labels = key + d;
+  const auto label = [key, d](int i) { return packed_detail::label(key, d, i); };
+  const int k = label(d), label_words = (d + 1 + 3) / 4;
+  std::uint8_t sizes[kMaxDimension + 1];
+  packed_detail::block_sizes(key, d, sizes);
+  std::uint32_t cur[packed_words(kMaxDimension)];
+  for (int i = 0; i < d; ++i) cur[i] = key[i];
+  for (int b = k; b >= 0; --b) {
+    const int n = sizes[b];
+    if (n < 2) continue;
+    std::uint8_t moving[kMaxDimension + 1];  // the block's elements but its last, increasing
+    for (int i = 0, j = 0; j + 1 < n; ++i)
+      if (label(i) == b) moving[j++] = static_cast<std::uint8_t>(i);
+    for (int half = 0; half < 2; ++half) {
+      // As CofaceEnumerator::start_split: labels ≥ θ rise by one, the moving set gets label θ.
+      const int theta = half == 0 ? b : b < k ? b + 1 : 0;
+      const std::uint32_t toggle = static_cast<std::uint32_t>(theta ^ (b + (b >= theta)));
+      const bool rotated = theta == 0 && half == 1;
+      // Four labels (≤ 31) at a time: a byte ≥ θ gets its high bit from byte + 128 − θ; the zero
+      // bytes after label d stay zero.
+      const std::uint32_t below_theta = 0x01010101u * static_cast<std::uint32_t>(0x80 - theta);
+      for (int w = 0; w < label_words; ++w) {
+        const int used = std::min(4, d + 1 - 4 * w);
+        const std::uint32_t in_use = used == 4 ? ~0u : (std::uint32_t{1} << 8 * used) - 1;
+        cur[d + w] = labels[w] + ((((labels[w] + below_theta) & 0x80808080u) >> 7) & in_use);
+      }
+      const std::uint32_t steps = (std::uint32_t{1} << (n - 1)) - 1;
+      for (std::uint32_t step = 1; step <= steps; ++step) {
+        const int i = moving[std::countr_zero(step)];
+        cur[d + (i >> 2)] ^= toggle << 8 * (i & 3);
+        if (rotated) cur[i] ^= key[i] ^ (key[i] - 1);  // y_i ↔ y_i − 1
+        emit(static_cast<const std::uint32_t*>(cur));
+      }
+      if (rotated)  // (y back for the blocks after)
+        for (int j = 0; j + 1 < n; ++j) cur[moving[j]] = key[moving[j]];
+    }
+  }
 }
 
 /// Number of l-cofaces of τ (thesis §3.5): Σ over cut vectors of Π_i a(n_i, c_i + 1), where
