@@ -155,18 +155,25 @@ TEST(Cofaces, VertexStarIsAPermutahedron) {
   }
 }
 
+// The blocks of 0 … d, a new block starting at i wherever bit i − 1 of `cuts` is set: every
+// composition of d + 1 (every simplex type) for cuts = 0 … 2^d − 1.
+std::vector<std::vector<int>> blocks_cut_at(int d, unsigned cuts) {
+  std::vector<std::vector<int>> blocks{{0}};
+  for (int i = 1; i <= d; ++i) {
+    if (cuts >> (i - 1) & 1)
+      blocks.push_back({i});
+    else
+      blocks.back().push_back(i);
+  }
+  return blocks;
+}
+
 TEST(Cofaces, CountFormulaForEverySimplexTypeUpToDimension6) {
   // A type is the sequence of block sizes (a composition of d+1); check one simplex of each type
   // and every l, including the closed forms for cofacets and maximal cofaces.
   for (int d = 1; d <= 6; ++d) {
     for (unsigned cuts = 0; cuts < (1u << d); ++cuts) {
-      std::vector<std::vector<int>> blocks{{0}};
-      for (int i = 1; i <= d; ++i) {
-        if (cuts >> (i - 1) & 1)
-          blocks.push_back({i});
-        else
-          blocks.back().push_back(i);
-      }
+      std::vector<std::vector<int>> blocks = blocks_cut_at(d, cuts);
       const Simplex s = Simplex::from_partition(std::vector<std::int32_t>(d, -1), blocks);
       std::uint64_t facets_formula = 0, maximal_formula = 1;
       for (const auto& b : blocks) {
@@ -206,13 +213,7 @@ TEST(Cofaces, PackedCofacetsInEnumeratorOrderForEveryTypeUpToDimension7) {
   for (int d = 1; d <= 7; ++d)
     for (unsigned cuts = 0; cuts + 1 < (1u << d); ++cuts) {  // (the last type, k = d, has no cofacets)
       // Every composition of d + 1 into blocks (d's block last), the others in several orders.
-      std::vector<std::vector<int>> blocks{{0}};
-      for (int i = 1; i <= d; ++i) {
-        if (cuts >> (i - 1) & 1)
-          blocks.push_back({i});
-        else
-          blocks.back().push_back(i);
-      }
+      std::vector<std::vector<int>> blocks = blocks_cut_at(d, cuts);
       std::vector<std::int32_t> y(d);
       for (int i = 0; i < d; ++i) y[i] = (i % 3 == 0 ? -1 : 1) * (i + 1) * 1000 - (i % 2);
       for (std::size_t r = 0; r < blocks.size(); ++r) {
