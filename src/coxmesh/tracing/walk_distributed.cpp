@@ -29,8 +29,6 @@ DistributedWalk::DistributedWalk(const Triangulation& t, IntersectionOracle& ora
       known_vertices_(d_),
       candidates_out_(ranks_),
       tested_out_(ranks_),
-      notes_out_(ranks_),
-      noted_(ranks_),
       point_(d_) {}
 
 // As SequentialWalk::classify, with S split: this rank's part of S and of the next level are
@@ -170,22 +168,17 @@ void DistributedWalk::walk() {
     agree(failure);
     if (!go) return;
     // The level's vertex values: τ's vertices and the one each cofacet adds (every vertex a test
-    // of the level can read). Another rank tests τ only from a simplex of its own that shares a
-    // cofacet with τ, whose minimal vertex is then one of these: the owners of these vertices are
-    // told that τ is in S, which spares them the oracle on it (in this level or a later one).
+    // of the level can read).
     vertices.clear();
     for (std::uint32_t i = level_begin_; i < level_end_; ++i) {
       const Simplex tau = mine_.simplex(i, d_);
-      const std::size_t first = vertices.size();
       for (int j = 0; j <= k_; ++j) tau.vertex(j, v), vertices.insert(vertices.end(), v, v + d_);
       cofacets.reset(tau, k_ + 1);
       while (const Simplex* mu = cofacets.next()) {
         mu->vertex(extra_vertex_index(tau, *mu), v);
         vertices.insert(vertices.end(), v, v + d_);
       }
-      if (ranks_ > 1) note_in_s(i, vertices.data() + first, (vertices.size() - first) / d_);
     }
-    exchange_notes();
     fetch_vertex_values(vertices);
     try {
       walk_level();
@@ -196,35 +189,6 @@ void DistributedWalk::walk() {
     exchange_candidates();
     append_level();
     ++levels_;
-  }
-}
-
-// τ = mine_[i] goes to the notes of the other ranks owning one of the n `vertices` around it.
-void DistributedWalk::note_in_s(std::uint32_t i, const std::int32_t* vertices, std::size_t n) {
-  int last_owner = -1;
-  for (std::size_t j = 0; j < n; ++j) {
-    const int owner = owner_rank(vertices + j * d_, d_, ranks_);
-    if (owner == rank_ || owner == last_owner) continue;
-    last_owner = owner;
-    if (noted_[owner]) continue;
-    noted_[owner] = 1;
-    noted_ranks_.push_back(owner);
-  }
-  for (const int r : noted_ranks_) put(notes_out_[r], mine_.key(i), words_), noted_[r] = 0;
-  noted_ranks_.clear();
-}
-
-// The level's simplices of S that other ranks may meet, to them: each is kept as another rank's
-// simplex of S (kRemoteInside), as a test of it would have found.
-void DistributedWalk::exchange_notes() {
-  if (ranks_ == 1) return;
-  std::vector<std::size_t> counts;
-  const std::vector<std::byte> notes = comm_.exchange(notes_out_, counts);
-  for (auto& out : notes_out_) out.clear();
-  std::uint32_t key[packed_words(kMaxDimension)];
-  for (const std::byte* in = notes.data(); in < notes.data() + notes.size();) {
-    take(in, key, words_);
-    if (others_.insert(key, hash_words(key, words_)).second) other_payload_.push_back(kRemoteInside);
   }
 }
 

@@ -53,8 +53,6 @@ class DistributedWalk {
   bool start_level();
   void exchange_candidates();
   void append_level();
-  void note_in_s(std::uint32_t i, const std::int32_t* vertices, std::size_t n);
-  void exchange_notes();
   void fetch_vertex_values(const std::vector<std::int32_t>& vertices);
   void evaluate_here(const std::int32_t* v, double* out);
   // Rethrows, on every rank, the first failure of any rank (nullptr: none here). Collective.
@@ -90,10 +88,6 @@ class DistributedWalk {
   PackedKeyIndex known_vertices_;
   // Per rank: transverse simplices found for it this level, and the keys it owns tested here.
   std::vector<std::vector<std::byte>> candidates_out_, tested_out_;
-  // Per rank: the simplices of the level it may meet (note_in_s), and which ranks τ has noted.
-  std::vector<std::vector<std::byte>> notes_out_;
-  std::vector<char> noted_;
-  std::vector<int> noted_ranks_;
   // S_∂ found here: (id of τ) << 32 | cofacet, key and point.
   std::vector<std::uint64_t> boundary_keys_;
   std::vector<std::uint32_t> boundary_simplices_;
