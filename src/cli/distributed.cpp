@@ -34,6 +34,8 @@ int checked_int(std::size_t n) {
 }
 
 class MpiCommunicator final : public Communicator {
+  static constexpr int kExchangeTag = 2;  // (gather_to_root's pieces have tag 1)
+
  public:
   MpiCommunicator() {
     MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
@@ -49,22 +51,31 @@ class MpiCommunicator final : public Communicator {
     MPI_Request request;
     MPI_Ialltoall(out_counts.data(), 1, MPI_UINT64_T, in_counts.data(), 1, MPI_UINT64_T, MPI_COMM_WORLD, &request);
     wait(request);
-    std::vector<int> send_counts(size_), send_at(size_), receive_counts(size_), receive_at(size_);
-    std::vector<std::byte> send;
+    // Each part goes from its own buffer straight to its place (one message per pair of ranks, the
+    // rank's own part copied without one): no send buffer gathering every part.
+    std::vector<std::size_t> receive_at(size_);
     std::size_t received = 0;
     for (int r = 0; r < size_; ++r) {
-      send_at[r] = checked_int(send.size());
-      send_counts[r] = checked_int(outgoing[r].size());
-      send.insert(send.end(), outgoing[r].begin(), outgoing[r].end());
-      if (r != rank_) bytes_sent_ += outgoing[r].size();
-      receive_at[r] = checked_int(received);
-      receive_counts[r] = checked_int(in_counts[r]);
+      receive_at[r] = received;
       received += in_counts[r];
+      checked_int(in_counts[r]);
+      checked_int(outgoing[r].size());
+      if (r != rank_) bytes_sent_ += outgoing[r].size();
     }
-    checked_int(received);
     std::vector<std::byte> in(received);
-    MPI_Alltoallv(send.data(), send_counts.data(), send_at.data(), MPI_BYTE, in.data(), receive_counts.data(),
-                  receive_at.data(), MPI_BYTE, MPI_COMM_WORLD);
+    if (!outgoing[rank_].empty())
+      std::memcpy(in.data() + receive_at[rank_], outgoing[rank_].data(), outgoing[rank_].size());
+    std::vector<MPI_Request> requests;
+    requests.reserve(2 * size_);
+    for (int r = 0; r < size_; ++r)
+      if (r != rank_ && in_counts[r] > 0)
+        MPI_Irecv(in.data() + receive_at[r], static_cast<int>(in_counts[r]), MPI_BYTE, r, kExchangeTag, MPI_COMM_WORLD,
+                  &requests.emplace_back());
+    for (int r = 0; r < size_; ++r)
+      if (r != rank_ && !outgoing[r].empty())
+        MPI_Isend(outgoing[r].data(), static_cast<int>(outgoing[r].size()), MPI_BYTE, r, kExchangeTag, MPI_COMM_WORLD,
+                  &requests.emplace_back());
+    MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
     counts.assign(in_counts.begin(), in_counts.end());
     return in;
   }

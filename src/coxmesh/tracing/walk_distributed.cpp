@@ -192,8 +192,9 @@ void DistributedWalk::walk() {
   }
 }
 
-// SequentialWalk::add_seed on every rank: each tests every face of the rings (the values of their
-// vertices fetched first) and keeps the simplices it owns, keyed by the order of the tests.
+// SequentialWalk::add_seed on every rank: each tests the faces of the rings that it owns (the
+// values of the rings' vertices fetched first) and keeps those of S, keyed by the order of the
+// tests of one process; the ranks agree on what the ring met.
 void DistributedWalk::add_seed(std::span<const double> seed, bool must_succeed) {
   check_seed_dimension(seed, d_);
   const Simplex sigma = t_.locate(seed);
@@ -214,6 +215,7 @@ void DistributedWalk::add_seed(std::span<const double> seed, bool must_succeed) 
         FaceEnumerator faces(s, k_);
         for (Simplex tau; faces.next(tau);) {
           discovery_ = tests++;
+          if (owner_rank(tau.y.data(), d_, ranks_) != rank_) continue;  // (its owner tests it)
           const Found f = classify(tau);
           inside_hit |= f.kind == Kind::inside;
           outside_hit |= f.kind == Kind::outside;
@@ -222,7 +224,11 @@ void DistributedWalk::add_seed(std::span<const double> seed, bool must_succeed) 
     } catch (...) {
       failure = std::current_exception();
     }
-    agree(failure);
+    // The ring's verdict is that of all its faces, each tested by its owner.
+    std::uint64_t found[] = {failure ? 1u : 0u, inside_hit ? 1u : 0u, outside_hit ? 1u : 0u};
+    comm_.sum(found, 3);
+    if (found[0] != 0) agree(failure);
+    inside_hit = found[1] != 0, outside_hit = found[2] != 0;
     if (inside_hit) break;
     rings.widen();
   }
