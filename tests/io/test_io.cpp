@@ -14,6 +14,7 @@
 #include "coxmesh/cell_complex/cell_complex.h"
 #include "coxmesh/cell_complex/topology.h"
 #include "coxmesh/io/atomic_file.h"
+#include "coxmesh/io/native_pieces.h"
 #include "coxmesh/io/polygons.h"
 #include "coxmesh/io/write_mesh.h"
 #include "coxmesh/oracle/implicit_oracle.h"
@@ -164,6 +165,20 @@ TEST(NativeFormat, RejectsDamagedFiles) {
   EXPECT_THROW(read(bytes + "x"), InputError);                                              // trailing bytes
   EXPECT_THROW(read("not a cxm file\n" + bytes.substr(bytes.find('\n') + 1)), InputError);  // bad header
   EXPECT_THROW(read(""), InputError);
+  // Header fields of another type than they should have: an error, not an uncaught exception of
+  // the JSON library (found by fuzzing a piece's header whose "format" was an array).
+  for (const char* header : {R"({"format":[1],"version":1})", R"({"format":"coxmesh-cxm-piece","version":[1]})",
+                             R"({"format":"coxmesh-cxm-pieces","version":{}})", R"({"format":null})"}) {
+    const std::string text = std::string(header) + "\n";
+    EXPECT_THROW(read(text), InputError) << header;
+    std::stringstream piece(text), manifest(text);
+    EXPECT_THROW(read_native_piece(piece, "damaged_0.cxm"), InputError) << header;
+    NativeFile file;
+    try {
+      EXPECT_FALSE(read_native_manifest(manifest, "damaged.cxm", file)) << header;
+    } catch (const InputError&) {  // (a manifest's own header, damaged)
+    }
+  }
   // A facet id out of range: the first facet id of level 1 (after the level-0 keys and offsets).
   std::string bad = bytes;
   const std::size_t header_end = bytes.find('\n') + 1;

@@ -136,7 +136,7 @@ NativeFile read_native(std::istream& in, const std::string& name) {
   if (!in) r.fail("not a .cxm file (no header line)");
   const std::streamoff data_start = in.tellg();
   nlohmann::json h = nlohmann::json::parse(line, nullptr, false);
-  if (h.is_object() && h.value("format", "") == "coxmesh-cxm-piece")
+  if (h.is_object() && h.contains("format") && h["format"] == "coxmesh-cxm-piece")
     r.fail("a piece of a .cxm file written by several processes: read its manifest (NAME.cxm for NAME_<rank>.cxm)");
   if (h.is_discarded() || !h.is_object() || !h.contains("format") || h["format"] != kMagic)
     r.fail("not a .cxm file (bad header)");

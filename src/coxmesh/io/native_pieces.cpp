@@ -87,7 +87,9 @@ void write_native_piece(std::ostream& os, const CellComplexPart& part) {
 
 CellComplexPart read_native_piece(std::istream& in, const std::string& name) {
   const nlohmann::json h = read_header(in);
-  if (h.is_discarded() || !h.is_object() || h.value("format", "") != kPieceMagic || h.value("version", 0) != 1)
+  // (Comparisons, not value(): a field of another type would throw outside the checks below.)
+  if (!h.is_object() || !h.contains("format") || h["format"] != kPieceMagic || !h.contains("version") ||
+      h["version"] != 1)
     throw InputError(name + ": not a piece of a .cxm file");
   CellComplexPart part;
   CellComplex& cc = part.cells;
@@ -169,7 +171,7 @@ WrittenCounts write_native_manifest_file(const std::string& path, int pieces, co
 bool read_native_manifest(std::istream& in, const std::string& name, NativeFile& out) {
   const std::streampos start = in.tellg();
   const nlohmann::json h = read_header(in);
-  if (h.is_discarded() || !h.is_object() || h.value("format", "") != kManifestMagic) {
+  if (!h.is_object() || !h.contains("format") || h["format"] != kManifestMagic) {
     in.clear();
     in.seekg(start);
     return false;
