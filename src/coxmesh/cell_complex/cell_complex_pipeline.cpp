@@ -5,6 +5,7 @@
 #include <atomic>
 
 #include "coxmesh/cell_complex/next_level.h"
+#include "coxmesh/errors.h"
 #include "coxmesh/lattice/cofaces.h"
 #include "coxmesh/util/huge_page_allocator.h"
 
@@ -65,7 +66,7 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
   const std::uint32_t batch_cells = kChunk * chunks_per_batch;
   const int words = packed_words(d);
   // Level j's simplices are the cofacets of level j − 1's (l = k + j, those have dimension l − 1).
-  const bool cofacets = prev.size() > 0 && prev.simplices.simplex(0, d).k + 1 == l;
+  COXMESH_ASSERT(prev.size() == 0 || prev.simplices.simplex(0, d).k + 1 == l);
   struct alignas(64) Chunk {  // (padded: neighbouring chunks are filled by different workers)
     std::vector<std::uint32_t> keys, facets, ids;
     std::vector<std::uint64_t> hashes;
@@ -86,33 +87,18 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
   const auto enumerate = [&](std::int64_t batch, std::size_t t) {
     Chunk& out = buffers[batch % 3][t];
     out.keys.clear(), out.facets.clear(), out.hashes.clear();
-    CofaceEnumerator cofaces;
-    std::uint32_t key[packed_words(kMaxDimension)];
     const std::uint32_t a = static_cast<std::uint32_t>(batch * batch_cells + t * kChunk);
     const std::uint32_t b = std::min(prev.size(), a + kChunk);
-    const auto add = [&](const std::uint32_t* nu, std::uint32_t c) {
-      for (int i = 0; i < words; ++i) out.keys.push_back(nu[i]);  // (a few words: no call to copy them)
-      out.hashes.push_back(hash_words(nu, words));
-      out.facets.push_back(c);
-    };
-    for (std::uint32_t c = a; c < b; ++c) {
-      if (cofacets) {  // (straight from the packed key, into arrays grown once per cell: the usual case)
-        const std::uint32_t* tau = prev.simplices.key(c);
-        const std::size_t first = out.hashes.size(), count = packed_cofacet_count(tau, d);
-        out.keys.resize((first + count) * words), out.hashes.resize(first + count), out.facets.resize(first + count, c);
-        std::uint32_t* keys = out.keys.data() + first * words;
-        std::uint64_t* hashes = out.hashes.data() + first;
-        for_each_packed_cofacet(tau, d, [&](const std::uint32_t* nu) {
-          for (int i = 0; i < words; ++i) *keys++ = nu[i];
-          *hashes++ = hash_words(nu, words);
-        });
-        continue;
-      }
-      cofaces.reset(prev.simplices.simplex(c, d), l);
-      while (const Simplex* nu = cofaces.next()) {
-        pack(*nu, key);
-        add(key, c);
-      }
+    for (std::uint32_t c = a; c < b; ++c) {  // (straight from the packed keys, into arrays grown once per cell)
+      const std::uint32_t* tau = prev.simplices.key(c);
+      const std::size_t first = out.hashes.size(), count = packed_cofacet_count(tau, d);
+      out.keys.resize((first + count) * words), out.hashes.resize(first + count), out.facets.resize(first + count, c);
+      std::uint32_t* keys = out.keys.data() + first * words;
+      std::uint64_t* hashes = out.hashes.data() + first;
+      for_each_packed_cofacet(tau, d, [&](const std::uint32_t* nu) {
+        for (int i = 0; i < words; ++i) *keys++ = nu[i];
+        *hashes++ = hash_words(nu, words);
+      });
     }
     out.ids.resize(out.hashes.size());
   };
