@@ -311,6 +311,115 @@ TEST(Polygons, PolyhedraAreClosed) {
   }
 }
 
+// The reference for PolyhedronCursor: at least four faces, none empty, and every edge (pair of
+// consecutive vertices of a cycle) counted in exactly two of them.
+bool closed_by_counting(std::span<const std::uint32_t> faces, const Ragged& polygons) {
+  if (faces.size() < 4) return false;
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+  for (std::uint32_t f : faces) {
+    const auto cycle = polygons[f];
+    if (cycle.empty()) return false;
+    for (std::size_t i = 0; i < cycle.size(); ++i) ++uses[std::minmax(cycle[i], cycle[(i + 1) % cycle.size()])];
+  }
+  return std::all_of(uses.begin(), uses.end(), [](const auto& u) { return u.second == 2; });
+}
+
+// Every cell of every 3-level against the reference, with its corners and local cycles.
+void expect_cursor_agrees(const CellComplex& cc, const Ragged& polygons, const std::string& what, int* open = nullptr) {
+  for (CellKind kind : {CellKind::interior, CellKind::boundary}) {
+    PolyhedronCursor cell(cc, kind, polygons);
+    ASSERT_EQ(cell.size(), cell_count(cc, kind, 3)) << what;
+    for (std::uint32_t c = 0; c < cell.size(); ++c) {
+      const bool closed = cell.load(c);
+      ASSERT_EQ(closed, closed_by_counting(cell.faces(), polygons)) << what << ": 3-cell " << c;
+      if (open) *open += closed ? 0 : 1;
+      if (!closed) continue;
+      std::set<std::uint32_t> corners;
+      std::vector<std::uint32_t> cycles;
+      for (std::uint32_t f : cell.faces()) {
+        corners.insert(polygons[f].begin(), polygons[f].end());
+        cycles.insert(cycles.end(), polygons[f].begin(), polygons[f].end());
+      }
+      ASSERT_EQ(std::vector<std::uint32_t>(corners.begin(), corners.end()),
+                std::vector<std::uint32_t>(cell.corners().begin(), cell.corners().end()))
+          << what;
+      ASSERT_EQ(cell.local_cycles().size(), cycles.size()) << what;
+      for (std::size_t i = 0; i < cycles.size(); ++i)
+        ASSERT_EQ(cell.corners()[cell.local_cycles()[i]], cycles[i]) << what;
+    }
+  }
+}
+
+TEST(Polygons, PolyhedronCursorMatchesEdgeCounting) {
+  for (const Case& c : catalogue()) {
+    const CellComplex cc = trace(c);
+    if (cc.manifold_dimension < 3) continue;
+    Ragged polygons = polygon_cycles(cc);
+    expect_cursor_agrees(cc, polygons, c.name);
+    // Damaged cycles: one emptied, one missing a vertex, one with a vertex repeated.
+    const std::uint32_t n = polygons.size();
+    for (std::uint32_t p : {0u, n / 3, n / 2, n - 1}) {
+      Ragged damaged;
+      for (std::uint32_t q = 0; q < n; ++q) {
+        std::vector<std::uint32_t> cycle(polygons[q].begin(), polygons[q].end());
+        if (q == p) cycle.clear();
+        if (q == p + 1) cycle.pop_back();
+        if (q == p + 2) cycle.push_back(cycle[0]);
+        damaged.push(cycle);
+      }
+      int open = 0;
+      expect_cursor_agrees(cc, damaged, c.name + ", damaged cycles", &open);
+      if (cc.manifold_dimension == 3) {
+        EXPECT_GT(open, 0) << c.name;
+      }
+    }
+  }
+  // A trace stopped at a limit leaves open cells at its edge.
+  const Triangulation t = Triangulation::coxeter(4).with_longest_edge(0.6);
+  const FunctionPtr f = sphere(3, 4, 1.0);
+  ImplicitOracle oracle(t, f, nullptr);
+  TraceOptions limit;
+  limit.max_simplices = 300;
+  TraceResult r = trace_manifold(t, oracle, {f->seed()}, limit);
+  ASSERT_EQ(r.status, TraceStatus::max_simplices_reached);
+  const CellComplex cut = build_cell_complex(std::move(r));
+  int open = 0;
+  expect_cursor_agrees(cut, polygon_cycles(cut), "S^3 stopped at 300 simplices", &open);
+  EXPECT_GT(open, 0);
+}
+
+TEST(Polygons, PolyhedronCursorWithManyCorners) {
+  // Cells of S^3 in R^4 given synthetic faces: two "pillows" (two faces on one cycle each), closed
+  // by the edge count, with 60 corners (a bit mask per corner) and 80 (sorted edge keys); then
+  // one face of a pillow replaced by another cycle.
+  const CellComplex cc = trace({"S^3 in R^4", sphere(3, 4, 1.0), nullptr, 0.6});
+  const Ragged real = polygon_cycles(cc);
+  PolyhedronCursor probe(cc, CellKind::interior, real);
+  std::uint32_t cell = 0;
+  while (cell < probe.size() && (probe.load(cell), probe.faces().size() != 4)) ++cell;
+  ASSERT_LT(cell, probe.size());
+  const std::vector<std::uint32_t> faces(probe.faces().begin(), probe.faces().end());
+  for (std::uint32_t half : {30u, 40u})
+    for (bool broken : {false, true}) {
+      std::vector<std::vector<std::uint32_t>> cycles(real.size());
+      std::vector<std::uint32_t> a(half), b(half);
+      ASSERT_GE(vertex_count(cc), 2 * half);
+      for (std::uint32_t i = 0; i < half; ++i) a[i] = 2 * i, b[i] = 2 * i + 1;
+      cycles[faces[0]] = a, cycles[faces[1]] = a, cycles[faces[2]] = b, cycles[faces[3]] = b;
+      if (broken) std::swap(cycles[faces[3]][0], cycles[faces[3]][1]);
+      for (auto& cy : cycles)
+        if (cy.empty()) cy = {0, 1, 2};
+      Ragged polygons;
+      for (const auto& cy : cycles) polygons.push(cy);
+      PolyhedronCursor cursor(cc, CellKind::interior, polygons);
+      EXPECT_EQ(cursor.load(cell), !broken) << half << " " << broken;
+      EXPECT_EQ(closed_by_counting(cursor.faces(), polygons), !broken);
+      if (!broken) {
+        EXPECT_EQ(cursor.corners().size(), 2 * half);
+      }
+    }
+}
+
 TEST(Polygons, SurfacesAreConsistentlyOrientedOutwards) {
   for (int i : {2, 3, 4}) {
     const Case c = catalogue()[i];

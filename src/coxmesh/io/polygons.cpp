@@ -3,6 +3,8 @@
 
 #include <algorithm>
 
+#include "coxmesh/util/sort_few.h"
+
 namespace coxmesh {
 
 namespace {
@@ -112,7 +114,11 @@ Ragged polygon_cycles(const CellComplex& cc, Ragged* cycle_edges) {
     if (!level) continue;
     // (an interior polygon with no boundary edge lists its edges as they are: no copy)
     const bool as_listed = kind == CellKind::interior && level->boundary_facet.empty();
+    const std::size_t shift = kind == CellKind::boundary ? n1 : 0;  // (of the edges' global ids)
     for (std::uint32_t c = 0; c < level->size(); ++c) {
+      // (the edges' ends are read at random: fetched a few polygons ahead)
+      if (constexpr std::uint32_t kAhead = 8; c + kAhead < level->size())
+        for (std::uint32_t e : level->facets(c + kAhead)) __builtin_prefetch(ends.data() + 2 * (shift + e));
       if (!as_listed) facets_of(*level, kind, c, n1, list);
       const std::span<const std::uint32_t> edges = as_listed ? level->facets(c) : std::span<const std::uint32_t>(list);
       const std::size_t n = edges.size();
@@ -165,38 +171,113 @@ Ragged polygon_cycles(const CellComplex& cc, Ragged* cycle_edges) {
 Ragged polygon_cycles(const CellComplex& cc) { return polygon_cycles(cc, nullptr); }
 
 Ragged oriented_polygon_cycles(const CellComplex& cc, const double* points3) {
+  const std::uint32_t n2 = cell_count(cc, CellKind::interior, 2);
+  // (the edges of the cycles are only needed to orient some: none of a 3-manifold without boundary)
+  const int m = cc.manifold_dimension;
+  if (m != 2 && (m != 3 || cell_count(cc, CellKind::boundary, 2) == 0)) return polygon_cycles(cc, nullptr);
   Ragged edges;
   Ragged polygons = polygon_cycles(cc, &edges);
-  const std::uint32_t n2 = cell_count(cc, CellKind::interior, 2);
   const std::uint32_t n_edges = cell_count(cc, CellKind::interior, 1) + cell_count(cc, CellKind::boundary, 1);
   if (cc.manifold_dimension == 2) orient_polygons(polygons, edges, n_edges, 0, n2, points3);
   if (cc.manifold_dimension == 3) orient_polygons(polygons, edges, n_edges, n2, polygons.size(), points3);
   return polygons;
 }
 
+PolyhedronCursor::PolyhedronCursor(const CellComplex& cc, CellKind kind, const Ragged& polygons, const double* points3)
+    : level_(cell_level(cc, kind, 3)),
+      kind_(kind),
+      polygons_(polygons),
+      n2_(cell_count(cc, CellKind::interior, 2)),
+      as_listed_(level_ && kind == CellKind::interior && level_->boundary_facet.empty()),
+      points3_(points3),
+      seen_(level_ ? vertex_count(cc) : 0, 0) {}
+
+bool PolyhedronCursor::load(std::uint32_t c) {
+  // (the cells are read in order, their polygons at random: fetched a few cells ahead)
+  constexpr std::uint32_t kAhead = 8;
+  if (as_listed_ && c + kAhead < size())
+    for (std::uint32_t f : level_->facets(c + kAhead)) __builtin_prefetch(&polygons_.offsets[f]);
+  if (as_listed_ && c + kAhead / 2 < size())
+    for (std::uint32_t f : level_->facets(c + kAhead / 2))
+      __builtin_prefetch(polygons_.items.data() + polygons_.offsets[f]);
+  if (as_listed_ && c + kAhead / 4 < size())
+    for (std::uint32_t f : level_->facets(c + kAhead / 4))
+      for (std::uint32_t v : polygons_[f]) {
+        __builtin_prefetch(&seen_[v]);
+        if (points3_) __builtin_prefetch(points3_ + 3 * std::size_t{v});
+      }
+  facets_of(*level_, kind_, c, n2_, faces_);
+  // The corners as first met, each with its index among them (seen_: the load's number and the
+  // index, per vertex).
+  corners_.clear(), local_.clear();
+  bool closed = faces_.size() >= 4;
+  const std::uint64_t stamp = ++loads_;
+  for (std::uint32_t f : faces_) {
+    const auto cycle = polygons_[f];
+    closed = closed && !cycle.empty();
+    for (std::uint32_t v : cycle) {
+      std::uint64_t& seen = seen_[v];
+      if (seen >> 32 != stamp) {
+        seen = stamp << 32 | corners_.size();
+        corners_.push_back(v);
+      }
+      local_.push_back(static_cast<std::uint32_t>(seen));
+    }
+  }
+  if (!closed) return false;
+  // Then ascending: the few corners are sorted with their first indices, which are renumbered.
+  order_.clear();
+  for (std::uint32_t i = 0; i < corners_.size(); ++i) order_.push_back(std::uint64_t{corners_[i]} << 32 | i);
+  sort_few(order_);
+  renumber_.resize(order_.size());
+  for (std::uint32_t i = 0; i < order_.size(); ++i) {
+    corners_[i] = static_cast<std::uint32_t>(order_[i] >> 32);
+    renumber_[static_cast<std::uint32_t>(order_[i])] = i;
+  }
+  for (std::uint32_t& i : local_) i = renumber_[i];
+  const std::size_t n = corners_.size();
+  if (n > 64) return closed_by_sorted_edges();
+  // Closed: every edge (pair of corners) in exactly two faces. Bit j of once[i] / twice[i]: edge
+  // {i, j}, i < j, seen once / twice so far.
+  std::uint64_t once[64], twice[64];
+  std::fill_n(once, n, 0), std::fill_n(twice, n, 0);
+  const std::uint32_t* cycle = local_.data();
+  for (std::uint32_t f : faces_) {
+    const std::size_t k = polygons_.offsets[f + 1] - polygons_.offsets[f];
+    for (std::size_t i = 0; i < k; ++i) {
+      std::uint32_t a = cycle[i], b = cycle[i + 1 < k ? i + 1 : 0];
+      if (a > b) std::swap(a, b);
+      const std::uint64_t bit = std::uint64_t{1} << b;
+      if (twice[a] & bit) return false;
+      twice[a] |= once[a] & bit;
+      once[a] ^= bit;
+    }
+    cycle += k;
+  }
+  return std::all_of(once, once + n, [](std::uint64_t edges) { return edges == 0; });
+}
+
+// The same test for a cell with more than 64 corners: its edges' keys sorted, in pairs.
+bool PolyhedronCursor::closed_by_sorted_edges() {
+  edges_.clear();
+  for (std::uint32_t f : faces_) {
+    const auto cycle = polygons_[f];
+    const std::size_t k = cycle.size();
+    for (std::size_t i = 0; i < k; ++i) edges_.push_back(edge_key(cycle[i], cycle[i + 1 < k ? i + 1 : 0]));
+  }
+  std::sort(edges_.begin(), edges_.end());
+  for (std::size_t i = 0; i < edges_.size(); i += 2)
+    if (i + 1 >= edges_.size() || edges_[i] != edges_[i + 1] || (i + 2 < edges_.size() && edges_[i + 2] == edges_[i]))
+      return false;
+  return true;
+}
+
 Ragged polyhedron_faces(const CellComplex& cc, CellKind kind, const Ragged& polygons) {
   Ragged faces;
-  const CellLevel* level = cell_level(cc, kind, 3);
-  if (!level) return faces;
-  const std::uint32_t n2 = cell_count(cc, CellKind::interior, 2);
-  std::vector<std::uint32_t> list;
-  std::vector<std::uint64_t> edges;
-  for (std::uint32_t c = 0; c < level->size(); ++c) {
-    facets_of(*level, kind, c, n2, list);
-    // Closed: every face is a polygon and every edge lies in exactly two faces.
-    bool closed = list.size() >= 4;
-    edges.clear();
-    for (std::uint32_t f : list) {
-      const auto cycle = polygons[f];
-      closed = closed && !cycle.empty();
-      for (std::size_t i = 0; i < cycle.size(); ++i) edges.push_back(edge_key(cycle[i], cycle[(i + 1) % cycle.size()]));
-    }
-    std::sort(edges.begin(), edges.end());
-    for (std::size_t i = 0; closed && i < edges.size(); i += 2)
-      closed = i + 1 < edges.size() && edges[i] == edges[i + 1] && (i + 2 >= edges.size() || edges[i + 2] != edges[i]);
-    if (!closed) list.clear();
-    faces.push(list);
-  }
+  PolyhedronCursor cursor(cc, kind, polygons);
+  faces.offsets.reserve(std::size_t{cursor.size()} + 1);
+  for (std::uint32_t c = 0; c < cursor.size(); ++c)
+    faces.push(cursor.load(c) ? cursor.faces() : std::span<const std::uint32_t>{});
   return faces;
 }
 

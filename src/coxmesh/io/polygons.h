@@ -69,9 +69,40 @@ Ragged polygon_cycles(const CellComplex& cc);
 Ragged oriented_polygon_cycles(const CellComplex& cc, const double* points3);
 
 /// The faces (global polygon ids) of every 3-cell of one kind; empty when the 3-cell is not
-/// closed (a face is empty in `polygons`, or some edge does not lie in exactly two faces).
+/// closed (fewer than four faces, a face empty in `polygons`, or an edge not in exactly two faces).
 ///   polygons: polygon_cycles(cc).
 Ragged polyhedron_faces(const CellComplex& cc, CellKind kind, const Ragged& polygons);
+
+/// The 3-cells of one kind one after the other, each with its faces, whether it is closed (as in
+/// polyhedron_faces) and its corners: polyhedron_faces without its lists, for writers that use each
+/// cell once. Cells are read in order and their polygons fetched a few cells ahead.
+class PolyhedronCursor {
+ public:
+  /// points3: the vertices' coordinates (n × 3) the caller reads for each cell, fetched ahead too (may be null).
+  PolyhedronCursor(const CellComplex& cc, CellKind kind, const Ragged& polygons, const double* points3 = nullptr);
+  std::uint32_t size() const { return level_ ? level_->size() : 0; }
+  /// Moves to cell c (0 ≤ c < size(), best in increasing order); whether it is closed.
+  bool load(std::uint32_t c);
+  /// The faces of the cell (global polygon ids).
+  std::span<const std::uint32_t> faces() const { return faces_; }
+  /// When closed: its vertices (global ids), ascending, each once.
+  std::span<const std::uint32_t> corners() const { return corners_; }
+  /// When closed: its faces' cycles one after the other, each vertex as its index in corners().
+  std::span<const std::uint32_t> local_cycles() const { return local_; }
+
+ private:
+  bool closed_by_sorted_edges();
+
+  const CellLevel* level_;
+  CellKind kind_;
+  const Ragged& polygons_;
+  std::uint32_t n2_;
+  bool as_listed_;  // (interior cells with no boundary face: their face ids as the level lists them)
+  const double* points3_;
+  std::vector<std::uint32_t> faces_, corners_, local_, renumber_;
+  std::vector<std::uint64_t> seen_, order_, edges_;
+  std::uint64_t loads_ = 0;
+};
 
 /// Reverses polygons first .. last−1 so that two of them sharing an edge traverse it in opposite
 /// directions (breadth-first over edge adjacency; edges in more than two of them are ignored). For

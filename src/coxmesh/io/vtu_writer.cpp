@@ -11,6 +11,7 @@
 #include "coxmesh/io/mesh_formats.h"
 #include "coxmesh/io/polygons.h"
 #include "coxmesh/io/simplices.h"
+#include "coxmesh/util/sort_few.h"
 
 namespace coxmesh {
 
@@ -68,39 +69,58 @@ struct Grid {
 
 std::array<double, 3> vec(const double* p3, std::uint32_t v) { return {p3[3 * v], p3[3 * v + 1], p3[3 * v + 2]}; }
 
-// Adds a 3-cell as a VTK polyhedron with faces turned outwards (Newell normal against the
-// direction from the cell's centroid to the face's centroid). points, cycle: scratch space.
+// Adds the closed 3-cell at `cell` as a VTK polyhedron with faces turned outwards (Newell normal
+// against the direction from the cell's centroid to the face's centroid). The face stream is
+// appended in place (its room is reserved by the caller). xyz: scratch space.
 template <class Index>
-void add_polyhedron(Grid<Index>& g, std::uint64_t domains, std::span<const std::uint32_t> face_ids,
-                    const Ragged& polygons, const double* p3, std::vector<std::uint32_t>& points,
-                    std::vector<std::uint32_t>& cycle) {
-  points.clear();
-  for (std::uint32_t f : face_ids) points.insert(points.end(), polygons[f].begin(), polygons[f].end());
-  std::sort(points.begin(), points.end());
-  points.erase(std::unique(points.begin(), points.end()), points.end());
+void add_polyhedron(Grid<Index>& g, std::uint64_t domains, const PolyhedronCursor& cell, const Ragged& polygons,
+                    const double* p3, std::vector<std::array<double, 3>>& xyz) {
+  const auto corners = cell.corners();
+  xyz.resize(corners.size());
   std::array<double, 3> centre{0, 0, 0};
-  for (std::uint32_t v : points)
-    for (int i = 0; i < 3; ++i) centre[i] += p3[3 * v + i] / static_cast<double>(points.size());
-  g.add(kPolyhedron, 3, domains, points);
+  for (std::size_t v = 0; v < corners.size(); ++v) {
+    xyz[v] = vec(p3, corners[v]);
+    for (int i = 0; i < 3; ++i) centre[i] += xyz[v][i] / static_cast<double>(corners.size());
+  }
+  g.add(kPolyhedron, 3, domains, corners);
   g.has_polyhedra = true;
-  g.faces.push_back(static_cast<Index>(face_ids.size()));
-  for (std::uint32_t f : face_ids) {
-    cycle.assign(polygons[f].begin(), polygons[f].end());
+  g.faces.push_back(static_cast<Index>(cell.faces().size()));
+  const std::uint32_t* local = cell.local_cycles().data();
+  for (std::uint32_t f : cell.faces()) {
+    const auto cycle = polygons[f];
+    const std::size_t k = cycle.size();
     std::array<double, 3> normal{0, 0, 0}, mid{0, 0, 0};
-    for (std::size_t i = 0; i < cycle.size(); ++i) {
-      const auto a = vec(p3, cycle[i]), b = vec(p3, cycle[(i + 1) % cycle.size()]);
+    for (std::size_t i = 0; i < k; ++i) {
+      const auto &a = xyz[local[i]], &b = xyz[local[i + 1 < k ? i + 1 : 0]];
       normal[0] += (a[1] - b[1]) * (a[2] + b[2]);
       normal[1] += (a[2] - b[2]) * (a[0] + b[0]);
       normal[2] += (a[0] - b[0]) * (a[1] + b[1]);
-      for (int j = 0; j < 3; ++j) mid[j] += a[j] / static_cast<double>(cycle.size());
+      for (int j = 0; j < 3; ++j) mid[j] += a[j] / static_cast<double>(k);
     }
+    local += k;
     double dot = 0;
     for (int j = 0; j < 3; ++j) dot += normal[j] * (mid[j] - centre[j]);
-    if (dot < 0) std::reverse(cycle.begin() + 1, cycle.end());
-    g.faces.push_back(static_cast<Index>(cycle.size()));
-    g.faces.insert(g.faces.end(), cycle.begin(), cycle.end());
+    g.faces.push_back(static_cast<Index>(k));
+    if (dot < 0) {  // (reversed: c0, c(k−1), …, c1)
+      g.faces.push_back(static_cast<Index>(cycle[0]));
+      for (std::size_t i = k - 1; i >= 1; --i) g.faces.push_back(static_cast<Index>(cycle[i]));
+    } else {
+      for (std::uint32_t v : cycle) g.faces.push_back(static_cast<Index>(v));
+    }
   }
   g.faceoffsets.back() = static_cast<Index>(g.faces.size());
+}
+
+// A bound on the length of the face stream of the 3-cells of one kind (all of them closed).
+std::size_t face_stream_bound(const CellComplex& cc, CellKind kind, const Ragged& polygons) {
+  const CellLevel* level = cell_level(cc, kind, 3);
+  if (!level) return 0;
+  std::size_t n = level->size() + level->facet_ids.size() + level->boundary_facet.size();
+  const std::uint32_t n2 = cell_count(cc, CellKind::interior, 2), shift = kind == CellKind::boundary ? n2 : 0;
+  for (std::uint32_t f : level->facet_ids) n += polygons.offsets[shift + f + 1] - polygons.offsets[shift + f];
+  for (std::uint32_t f : level->boundary_facet)
+    if (f != CellLevel::kNone) n += polygons.offsets[n2 + f + 1] - polygons.offsets[n2 + f];
+  return n;
 }
 
 // One appended-data block: UInt64 byte count, then the bytes.
@@ -143,7 +163,7 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
   g.ids = ids;
   const int p = std::min(m, 3);
   g.reserve(cc, p, simplices);
-  std::vector<std::uint32_t> scratch_points, scratch_cycle;
+  std::vector<std::array<double, 3>> scratch_xyz;
   auto add_level = [&](CellKind kind, int dim) {
     const bool boundary = kind == CellKind::boundary;
     if (dim == 0) {
@@ -212,20 +232,27 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
       add_strata(&polygons);
     } else {
       for (CellKind kind : {CellKind::interior, CellKind::boundary}) {
-        const Ragged faces = polyhedron_faces(cc, kind, polygons);
-        for (std::uint32_t c = 0; c < faces.size(); ++c)
-          if (g.from(kind, 3, c); !faces[c].empty() && simplices) {
-            for_each_cone_tetrahedron(faces[c], polygons, p3.data(),
+        const std::uint64_t on_boundary = kind == CellKind::boundary ? 1 : 0;
+        if (!simplices) {  // (a corner of a closed polyhedron is in 3 faces or more: ≤ stream / 3 corners)
+          const std::size_t stream = face_stream_bound(cc, kind, polygons);
+          g.faces.reserve(g.faces.size() + stream);
+          g.connectivity.reserve(g.connectivity.capacity() + stream / 3);
+        }
+        PolyhedronCursor cell(cc, kind, polygons, p3.data());
+        for (std::uint32_t c = 0; c < cell.size(); ++c) {
+          g.from(kind, 3, c);
+          if (!cell.load(c)) {
+            ++counts.skipped;
+          } else if (simplices) {
+            for_each_cone_tetrahedron(cell.faces(), polygons, p3.data(),
                                       [&](std::uint32_t a, std::uint32_t b, std::uint32_t c2, std::uint32_t e) {
                                         const std::array<std::uint32_t, 4> t{a, b, c2, e};
-                                        g.add(kTetrahedron, 3, kind == CellKind::boundary ? 1 : domains_of(3, c), t);
+                                        g.add(kTetrahedron, 3, on_boundary ? 1 : domains_of(3, c), t);
                                       });
-          } else if (!faces[c].empty()) {
-            add_polyhedron(g, kind == CellKind::boundary ? 1 : domains_of(3, c), faces[c], polygons, p3.data(),
-                           scratch_points, scratch_cycle);
           } else {
-            ++counts.skipped;
+            add_polyhedron(g, on_boundary ? 1 : domains_of(3, c), cell, polygons, p3.data(), scratch_xyz);
           }
+        }
       }
       for (std::uint32_t c = n2; m == 3 && c < polygons.size(); ++c) {
         if (!polygons[c].empty()) {
