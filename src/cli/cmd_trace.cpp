@@ -156,6 +156,12 @@ void run(TraceCliOptions o) {
     throw InputError("-o " + output +
                      ": a .pvtu is written in pieces by several processes (mpirun -n P, P >= 2); "
                      "write .vtu");
+  // Several domains: a manifold with corners, meshed by one process, also under mpirun (below).
+  const bool corners = problem.domains.size() + (problem.domain ? 1 : 0) >= 2;
+  if (vtu_pieces && corners)
+    throw InputError("-o " + output +
+                     ": a manifold with corners is meshed by one process, not in pieces (under mpirun, by rank "
+                     "0); write .vtu");
   const MeshFormat format = !write || vtu_pieces ? MeshFormat::vtu
                             : o.format.empty()   ? format_of_path(output)
                                                  : parse_format(o.format);
@@ -170,7 +176,7 @@ void run(TraceCliOptions o) {
     early.projection = o.project;
     early.simplices = o.simplices;
     check_format(format, d, d - f->codimension(), early);
-    if (problem.domains.size() + (problem.domain ? 1 : 0) >= 2) check_stratified_format(format, d - f->codimension());
+    if (corners) check_stratified_format(format, d - f->codimension());
   } else if (o.simplices || !o.pole.empty()) {
     throw InputError(std::string(o.simplices ? "--simplices" : "--pole") +
                      " applies to the output file; there is none");
@@ -215,7 +221,16 @@ void run(TraceCliOptions o) {
   }
 
   // Under mpirun the walk is split between the processes and rank 0 reports (distributed.h).
-  Communicator* const comm = MpiSession::communicator();
+  Communicator* comm = MpiSession::communicator();
+  // But for a manifold with corners: its walk (trace_strata.h) is sequential, so rank 0 meshes it
+  // as one process does (any format, a .cxm whole) while the others wait for its status asleep
+  // (docs/distributed.md).
+  int idle_ranks = 0;
+  if (comm && corners) {
+    if (comm->rank() != 0) throw DistributedPartDone{};
+    idle_ranks = comm->size() - 1;
+    comm = nullptr;
+  }
   DistributedTraceStats distributed;
   WriteOptions piece_options;   // (of .pvtu pieces)
   PartCounts pieces_written{};  // (summed over them: points, cells, skipped cells)
@@ -226,15 +241,10 @@ void run(TraceCliOptions o) {
     if (cloud && cloud->oracle != SampleOracle::vertex)
       throw InputError("the " + cloud->oracle_name() +
                        " oracle of point clouds is not traced by several processes yet: run without mpirun");
-    if (problem.domains.size() + (problem.domain ? 1 : 0) >= 2)
-      throw InputError("manifolds with corners are not traced by several processes yet: run without mpirun");
     // .cxm and .pvtu files in pieces, one per process, and a manifest (native_pieces.h,
-    // vtu_pieces.h); other formats are written by rank 0 from the gathered trace.
+    // vtu_pieces.h), with --refine each rank refining its vertices before its piece; other formats
+    // are written by rank 0 from the gathered trace.
     const bool pieces = write && (format == MeshFormat::cxm || vtu_pieces);
-    if (pieces && o.refine)
-      throw InputError(
-          "--refine does not apply to a file written in pieces by several processes yet: write "
-          "another format, or run without mpirun");
     piece_options.projection = o.project;
     piece_options.pole = pole;
     piece_options.simplices = o.simplices;
@@ -342,6 +352,9 @@ void run(TraceCliOptions o) {
   else if (!o.quiet)
     print_trace_lines(out, summary);
   if (comm && !o.quiet) print_distributed_stats(std::cerr, distributed, report.topology.cells.at(0), topology_stats);
+  if (idle_ranks && !o.quiet)
+    std::cerr << "coxmesh: " << idle_ranks + 1 << " processes: a manifold with corners is meshed by rank 0 alone, "
+              << idle_ranks << " waited\n";
 }
 
 }  // namespace

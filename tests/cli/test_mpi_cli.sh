@@ -4,7 +4,8 @@
 # aside) are byte for byte those of one process with one thread, F evaluations included (a .cxm
 # written in pieces, merged by `coxmesh convert`; the topology computed without gathering the
 # complex); a failure
-# of F on one rank stops every rank with one error line and a non-zero status.
+# of F on one rank stops every rank with one error line and a non-zero status; --refine with pieces
+# (each rank refines its vertices); manifolds with corners (rank 0 meshes them as one process does).
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
 mpiexec=${MPIEXEC:?set MPIEXEC to mpirun}
@@ -137,9 +138,49 @@ status=0
 mpi 2 trace --points rp2.xyz --m 2 -q --no-output 2> rp2.err || status=$?
 check "the winding oracle under mpirun: refused with one error line" "1 1" \
   "$((status != 0)) $(grep -c '^coxmesh: error: the winding oracle of point clouds is not traced by several processes' rp2.err)"
-# Manifolds with corners are traced by one process only: refused, not traced on every rank.
+# Manifolds with corners (several domains) are meshed by rank 0 as one process does, the other
+# ranks waiting: the files (a .cxm whole, no pieces) and the summary are one process's.
+same_whole_as_one_process() {  # NAME "EXTENSIONS" TRACE-ARGS... (the formats written by rank 0, besides .cxm)
+  local name=$1 extensions=$2; shift 2
+  "$bin" trace "$@" --threads 1 --json -o "$name.cxm" > "$name.json"
+  for ext in $extensions; do "$bin" trace "$@" --threads 1 -q -o "$name.$ext"; done
+  for n in 2 3; do
+    local status=0
+    mpi "$n" trace "$@" --json -o "$name.$n.cxm" > "$name.$n.json" 2> "$name.$n.err" || status=$?
+    check "$name, $n processes: exit status, no pieces" "0 0" "$status $(ls "$name.$n"_*.cxm 2> /dev/null | wc -l)"
+    check "$name, $n processes: the same file" same "$(cmp -s "$name.cxm" "$name.$n.cxm" && echo same || echo different)"
+    "$bin" convert -q "$name.$n.cxm" "$name.$n.merged.cxm"
+    check "$name, $n processes: converted, the same file" same \
+      "$(cmp -s "$name.cxm" "$name.$n.merged.cxm" && echo same || echo different)"
+    check "$name, $n processes: the same summary" "$(stable "$name.json")" "$(stable "$name.$n.json")"
+    check "$name, $n processes: said on standard error" 1 "$(grep -c 'meshed by rank 0 alone' "$name.$n.err")"
+    for ext in $extensions; do
+      status=0
+      mpi "$n" trace "$@" -q -o "$name.$n.$ext" || status=$?
+      check "$name, $n processes: the same .$ext" "0 same" \
+        "$status $(cmp -s "$name.$ext" "$name.$n.$ext" && echo same || echo different)"
+    done
+  done
+}
+same_whole_as_one_process sphere-two-domains "vtu ply" --preset sphere --domain=-x --domain=-y
+same_whole_as_one_process octant "vtu ply" --preset sphere --domain=-x --domain=-y --cut 0,0,-1,0 --edge-length 0.15
+same_whole_as_one_process arc vtu --function "x^2+y^2+z^2-1; z" --domain=-x --domain "y-0.5" --edge-length 0.1
+same_whole_as_one_process octant-refined "vtu obj" --preset sphere --domain=-x --domain=-y --cut 0,0,-1,0 --edge-length 0.15 --refine
+check "octant: three corners" '  "corners": 3,' "$(grep '"corners"' octant.3.json)"
+check "octant, refined: refined" 1 "$(grep -c '"max_abs_f_after"' octant-refined.2.json)"
 status=0
-mpi 2 trace --preset sphere --domain=-x --domain=-y --json -o corners.cxm > corners.out 2> corners.err || status=$?
-check "corners under mpirun: refused with one error line" "1 1 no" \
-  "$((status != 0)) $(grep -c '^coxmesh: error: manifolds with corners are not traced by several processes' corners.err) $([ -e corners.cxm ] && echo yes || echo no)"
+mpi 2 trace --preset sphere --domain=-x --domain=-y -q -o corners.pvtu 2> corners.err || status=$?
+check "corners to a .pvtu: refused with one error line, no file" "1 1 no" \
+  "$((status != 0)) $(grep -c '^coxmesh: error: .*corners is meshed by one process, not in pieces' corners.err) $([ -e corners.pvtu ] && echo yes || echo no)"
+# --refine with pieces: each rank refines the vertices of its cells before writing its piece.
+# (the torus at 3 processes: the largest |F| before refinement is not on rank 0)
+same_as_one_process refined --preset torus --refine
+same_as_one_process refined-cut --preset torus --box -2,-2,-0.1,2,2,2 --edge-length 0.3 --refine
+check "refined: max |F| after below before" yes "$(python3 -c 'import json, sys; r = json.load(open(sys.argv[1]))["refinement"]
+print("yes" if r["max_abs_f_after"] < r["max_abs_f_before"] and r["vertices"] > 0 else "no")' refined-cut.3.json)"
+same_cells_as_one_process refined-pieces --preset torus --box -2,-2,-0.1,2,2,2 --edge-length 0.3 --refine
+"$bin" trace --preset torus --box -2,-2,-0.1,2,2,2 --edge-length 0.3 --refine --threads 1 --json -o refined-one.vtu > refined-one.json
+mpi 2 trace --preset torus --box -2,-2,-0.1,2,2,2 --edge-length 0.3 --refine --json -o refined-two.pvtu > refined-two.json
+check "refined .pvtu, 2 processes: the summary's refinement" "$(grep -A4 '"refinement"' refined-one.json)" \
+  "$(grep -A4 '"refinement"' refined-two.json)"
 finish

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <span>
 
 #include "coxmesh/oracle/implicit_oracle.h"
@@ -49,6 +50,27 @@ bool singular_on_parts(std::span<const ImplicitFunction* const> functions, const
   return counts[0] > 0 && 4 * counts[1] > counts[0];
 }
 
+// The refinement of the whole complex from each rank's: the largest |F| of all, the counts summed
+// (rank 0 gets them; the time is rank 0's).
+RefinementReport merged_refinement(RefinementReport mine, Communicator& comm) {
+  std::uint64_t counts[2] = {mine.vertices, mine.not_refined};
+  comm.sum(counts, 2);
+  mine.vertices = counts[0];
+  mine.not_refined = counts[1];
+  const double largest[2] = {mine.max_abs_f_before, mine.max_abs_f_after};
+  std::vector<std::byte> bytes(sizeof largest);
+  std::memcpy(bytes.data(), largest, sizeof largest);
+  std::vector<std::size_t> sizes;
+  const std::vector<std::byte> all = comm.gather_to_root(bytes, sizes);
+  for (std::size_t at = 0; at + sizeof largest <= all.size(); at += sizeof largest) {
+    double theirs[2];
+    std::memcpy(theirs, all.data() + at, sizeof theirs);
+    mine.max_abs_f_before = std::max(mine.max_abs_f_before, theirs[0]);
+    mine.max_abs_f_after = std::max(mine.max_abs_f_after, theirs[1]);
+  }
+  return mine;
+}
+
 }  // namespace
 
 Tracer distributed_tracer(Communicator& comm, DistributedTraceStats* stats) {
@@ -63,9 +85,9 @@ Tracer distributed_tracer(Communicator& comm, DistributedTraceStats* stats) {
 
 ComplexTracer distributed_complex_tracer(Communicator& comm, PartWriter write_part, DistributedTraceStats* stats,
                                          PartCounts* written, DistributedTopologyStats* topology_stats) {
-  return [&comm, write_part, stats, written, topology_stats](const Triangulation& t, const ManifoldFunctions& m,
-                                                             const std::vector<std::vector<double>>& seeds,
-                                                             const TraceOptions& options, TraceResult& traced) {
+  return [&comm, write_part, stats, written, topology_stats](
+             const Triangulation& t, const ManifoldFunctions& m, const std::vector<std::vector<double>>& seeds,
+             const TraceOptions& options, bool refine, TraceResult& traced) {
     TracePart part = [&] {  // (the vertex values go before the complex is built)
       RankOracle r(t, m);
       return trace_part_distributed(t, r.oracle, *r.values, r.evaluate, seeds, options, comm, stats);
@@ -92,12 +114,23 @@ ComplexTracer distributed_complex_tracer(Communicator& comm, PartWriter write_pa
     }
     std::exception_ptr failure;
     PartCounts counts{};
+    RefinementReport refined;
     try {
+      // Each vertex moves on its own (refine.h), so refining the rows of this rank's vertex cells
+      // before its piece is written gives them as one refinement of the whole complex does.
+      if (!empty && refine) {
+        RefineOptions one_thread;
+        one_thread.threads = 1;
+        const RefineSet set{m.f, m.domain ? std::vector<FunctionPtr>{m.domain} : std::vector<FunctionPtr>{}};
+        refined = refine_vertices(
+            cells.cells, t.longest_edge(), [&set] { return set; }, one_thread);
+      }
       if (!empty && write_part) counts = write_part(cells);
     } catch (...) {
       failure = std::current_exception();
     }
     agree_on_failure(comm, failure);
+    if (!empty && refine) out.refinement = merged_refinement(refined, comm);
     comm.sum(counts.data(), static_cast<int>(counts.size()));
     if (written) *written = counts;
     release_all_but_incidences(cells);

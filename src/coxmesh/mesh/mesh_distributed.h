@@ -33,11 +33,13 @@ using PartCounts = std::array<std::uint64_t, 3>;
 using PartWriter = std::function<PartCounts(CellComplexPart&)>;
 
 /// A MeshOptions::complex_tracer: the walk and the cell complex split over `comm`, each rank building
-/// the cells it owns (cell_complex_distributed.h) and writing them with `write_part` (every rank
-/// agrees on whether all succeeded before going on; `written`, if given, gets the counts summed over
-/// the ranks); then the ranks compute the topology together (topology_distributed.h) and the
-/// regularity verdicts over the vertices, each over its own cells. Rank 0 gets them, with a complex
-/// that has the dimensions but no cells; the other ranks throw DistributedPartDone.
+/// the cells it owns (cell_complex_distributed.h), refining their vertex rows when asked (each vertex
+/// moves on its own: the rows of one refinement of the whole complex, refine.h), and writing them
+/// with `write_part` (every rank agrees on whether all succeeded before going on; `written`, if
+/// given, gets the counts summed over the ranks); then the ranks compute the topology together
+/// (topology_distributed.h) and the regularity verdicts over the vertices, each over its own cells.
+/// Rank 0 gets them, with a complex that has the dimensions but no cells; the other ranks throw
+/// DistributedPartDone.
 ComplexTracer distributed_complex_tracer(Communicator& comm, PartWriter write_part,
                                          DistributedTraceStats* stats = nullptr, PartCounts* written = nullptr,
                                          DistributedTopologyStats* topology_stats = nullptr);

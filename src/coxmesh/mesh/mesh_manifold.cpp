@@ -131,7 +131,7 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
   TraceResult traced;
   TracedComplex built;  // (by complex_tracer)
   if (o.complex_tracer)
-    built = o.complex_tracer(t, {f, domain}, seeds.seeds, trace, traced);
+    built = o.complex_tracer(t, {f, domain}, seeds.seeds, trace, o.refine, traced);
   else if (o.tracer)
     traced = o.tracer(t, {f, domain}, seeds.seeds, trace);
   else
@@ -192,7 +192,9 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
           "the domain's boundary is tangent to the manifold along the cut (D = 0 contains M or touches it): the cut "
           "meshed is a perturbed one");
   }
-  if (o.refine) {
+  if (o.refine && built.refinement) {  // (done where the vertices are)
+    report.refinement = built.refinement;
+  } else if (o.refine) {
     if (o.on_phase) o.on_phase("refining the vertices onto M");
     report.refinement = refine(report.cells, h, trace.threads, first, make, [&](const ManifoldFunctions& w) {
       const FunctionPtr merged = with_box(merged_domain(w));

@@ -42,14 +42,18 @@ struct TracedComplex {
   std::optional<TopologyReport> topology;
   /// singular_on over the vertex cells (F), and over the boundary vertex cells (F and D).
   std::optional<bool> singular_vertices, singular_boundary_vertices;
+  /// When asked to refine: the vertices were moved onto M where they are (refine_vertices), with
+  /// what one refinement of the whole complex reports.
+  std::optional<RefinementReport> refinement;
 };
 
 /// The walk and the cell complex in place of trace_manifold and build_cell_complex, e.g. both split
 /// between processes (mesh_distributed.h): returns the complex, and the trace's status, message and
-/// counts in `traced` (whose S and S_∂ may stay empty).
+/// counts in `traced` (whose S and S_∂ may stay empty). With `refine` it also moves the vertices onto
+/// M (MeshOptions::refine) after the regularity verdicts and reports it in TracedComplex::refinement.
 using ComplexTracer = std::function<TracedComplex(const Triangulation&, const ManifoldFunctions&,
                                                   const std::vector<std::vector<double>>& seeds, const TraceOptions&,
-                                                  TraceResult& traced)>;
+                                                  bool refine, TraceResult& traced)>;
 
 struct MeshOptions {
   std::vector<std::vector<double>> seeds;  ///< points near M, d coordinates each
