@@ -44,7 +44,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   analyze_topology(file.cells);
   edge_ends(file.cells, CellKind::interior);
   edge_ends(file.cells, CellKind::boundary);
-  polygon_cycles(file.cells);
+  const Ragged polygons = polygon_cycles(file.cells);
+  for (CellKind kind : {CellKind::interior, CellKind::boundary}) polyhedron_faces(file.cells, kind, polygons);
   // What was accepted must be written back in a form the reader accepts again, identically.
   std::stringstream once, twice;
   write_native(once, file.cells, file.info);
