@@ -56,7 +56,13 @@ int extra_vertex_index(const Simplex& tau, const Simplex& mu) {
   return b + 1;
 }
 
-int packed_facet_index(const std::uint32_t* tau, const std::uint32_t* sigma, int d) {
+namespace {
+
+// kD > 0: the loops over d unrolled for this d (the common small dimensions; `check` of T³ ⊂ R⁶,
+// 17.5 M incidences, took 4 % less CPU); 0: any d.
+template <int kD>
+int facet_index(const std::uint32_t* tau, const std::uint32_t* sigma, int runtime_d) {
+  const int d = kD > 0 ? kD : runtime_d;
   // Labels are bytes in memory order (pack() copies them so); four to a word, read a word at a time
   // below where every byte gets the same operation (labels ≤ 31: no carry crosses a byte).
   const auto* ls = reinterpret_cast<const unsigned char*>(sigma + d);
@@ -89,6 +95,25 @@ int packed_facet_index(const std::uint32_t* tau, const std::uint32_t* sigma, int
   for (int w = 0; w < label_words; ++w)
     same &= tau[d + w] == sigma[d + w] - (((sigma[d + w] + below_j) & 0x80808080u) >> 7);
   return same ? j : -1;
+}
+
+}  // namespace
+
+int packed_facet_index(const std::uint32_t* tau, const std::uint32_t* sigma, int d) {
+  switch (d) {
+    case 2:
+      return facet_index<2>(tau, sigma, d);
+    case 3:
+      return facet_index<3>(tau, sigma, d);
+    case 4:
+      return facet_index<4>(tau, sigma, d);
+    case 5:
+      return facet_index<5>(tau, sigma, d);
+    case 6:
+      return facet_index<6>(tau, sigma, d);
+    default:
+      return facet_index<0>(tau, sigma, d);
+  }
 }
 
 void FaceEnumerator::reset(const Simplex& sigma, int k) {
