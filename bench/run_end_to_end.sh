@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # What a user of `coxmesh trace` waits for: each case in a fresh process, one thread by default,
 # with its phases (trace, cell complex, topology, writing the file; "rest" is the whole command
-# minus those: start-up, seeds, reporting) and its peak memory. Fastest of R runs. Builds nothing.
+# minus those: start-up, seeds, reporting) and its peak memory; then reading a result back with
+# `coxmesh convert` (last table). Fastest of R runs. Builds nothing.
 #
 #   bench/run_end_to_end.sh [path/to/coxmesh] [runs=3] [threads=1]
 set -euo pipefail
@@ -47,3 +48,24 @@ PY
   done
   echo "| $name | $(cut -d'|' -f2- <<<"$best" | sed 's/|/ | /g') |"
 done
+
+# Reading a traced result back: `convert` of the T³ file above saved as .cxm (305 MB) to .vtu, and
+# the reading alone as `check --json` times it. Fastest of R runs.
+IFS=' ' read -r -a argv <<<"--function x1^2+x2^2-1;x3^2+x4^2-1;x5^2+x6^2-1 --dim 6 --box -2,-2,-2,-2,-2,-2,2,2,2,2,2,2 --edge-length 0.55"
+"$bin" trace "${argv[@]}" --threads 1 -q -o "$work/t3.cxm"
+echo
+echo "| case | file MB | convert to .vtu s | read s (check) | read MB/s |"
+echo "|---|---|---|---|---|"
+best_convert="" best_read=""
+for ((r = 0; r < runs; r++)); do
+  start=$(date +%s.%N)
+  "$bin" convert -q "$work/t3.cxm" "$work/t3.vtu"
+  end=$(date +%s.%N)
+  convert=$(awk "BEGIN { print $end - $start }")
+  read=$("$bin" check --json "$work/t3.cxm" | /usr/bin/python3 -c 'import json, sys; print(json.load(sys.stdin)["timings"]["read_seconds"])')
+  if [[ -z "$best_convert" ]] || awk "BEGIN { exit !($convert < $best_convert) }"; then best_convert=$convert; fi
+  if [[ -z "$best_read" ]] || awk "BEGIN { exit !($read < $best_read) }"; then best_read=$read; fi
+done
+mb=$(awk "BEGIN { print $(stat -c %s "$work/t3.cxm") / 1e6 }")
+awk -v mb="$mb" -v c="$best_convert" -v r="$best_read" \
+  'BEGIN { printf "| T3 in R6, .cxm | %.0f | %.3f | %.3f | %.0f |\n", mb, c, r, mb / r }'

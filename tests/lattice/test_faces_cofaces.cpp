@@ -300,3 +300,75 @@ TEST(FacesCofaces, FaceTestAgainstVertexSets) {
   EXPECT_FALSE(is_face_of(parse_simplex("(1,1,1) [{0,1,2,3}]"), parse_simplex("(0,0,0) [{0,1},{2,3}]")));
   EXPECT_TRUE(is_face_of(parse_simplex("(1,1,1) [{0,1,2,3}]"), parse_simplex("(0,0,0) [{0,1,2},{3}]")));
 }
+
+// The facet test and the key check on packed words agree with the face relation of unpacked
+// simplices: every facet of σ is found at its index, and no other simplex of dimension l − 1 near σ
+// (the facets of σ's neighbours through its facets, and σ's faces moved by one) is taken for one.
+TEST(PackedFaces, FacetIndexAgreesWithTheFaceTest) {
+  std::mt19937 rng(5);
+  std::size_t facets = 0, others = 0;
+  for (int d = 1; d <= 9; ++d)
+    for (unsigned cuts = 1; cuts < (1u << d); cuts += (d > 6 ? 37 : 1)) {  // (at least two blocks: l ≥ 1)
+      std::vector<std::vector<int>> blocks = blocks_cut_at(d, cuts);
+      std::vector<std::int32_t> y(d);
+      for (auto& c : y) c = std::uniform_int_distribution<int>(-5, 5)(rng);
+      if (blocks.size() >= 3) std::rotate(blocks.begin(), blocks.begin() + 1, blocks.end() - 1);
+      const Simplex sigma = Simplex::from_partition(y, blocks);
+      const int words = packed_words(d);
+      std::vector<std::uint32_t> ks(words), kt(words);
+      pack(sigma, ks.data());
+      ASSERT_TRUE(is_packed_simplex(ks.data(), d, sigma.k)) << sigma;
+      EXPECT_FALSE(is_packed_simplex(ks.data(), d, sigma.k - 1)) << sigma;
+      std::set<Simplex> candidates;
+      for (int j = 0; j <= sigma.k; ++j) {
+        const Simplex f = facet_without(sigma, j);
+        pack(f, kt.data());
+        ASSERT_TRUE(is_packed_simplex(kt.data(), d, f.k)) << f;
+        EXPECT_EQ(packed_facet_index(kt.data(), ks.data(), d), j) << f << " of " << sigma;
+        ++facets;
+        for (const Simplex& c : cofaces(f, f.k + 1))
+          for (int i = 0; i <= c.k; ++i) candidates.insert(facet_without(c, i));
+        for (int i = 0; i < d; ++i) {  // (moved faces: some coordinates one off)
+          Simplex g = f;
+          g.y[i] += i % 2 ? 1 : -1;
+          candidates.insert(g);
+        }
+      }
+      for (const Simplex& c : candidates) {
+        pack(c, kt.data());
+        const int j = packed_facet_index(kt.data(), ks.data(), d);
+        EXPECT_EQ(j >= 0, is_face_of(c, sigma)) << c << " and " << sigma;
+        if (j >= 0) {
+          EXPECT_EQ(facet_without(sigma, j), c);
+        }
+        others += j < 0;
+      }
+    }
+  EXPECT_GT(facets, 500u);
+  EXPECT_GT(others, 10000u);
+}
+
+TEST(PackedFaces, KeyCheckRefusesWhatPackNeverWrites) {
+  const Simplex s = parse_simplex("(4,-2,7,0,1) [{1,3},{0},{2,4,5}]");  // d = 5, k = 2: two label words
+  std::vector<std::uint32_t> key(packed_words(5));
+  pack(s, key.data());
+  ASSERT_TRUE(is_packed_simplex(key.data(), 5, 2));
+  const auto with_label = [&](int i, unsigned char label) {
+    std::vector<std::uint32_t> k = key;
+    reinterpret_cast<unsigned char*>(k.data() + 5)[i] = label;
+    return k;
+  };
+  EXPECT_FALSE(is_packed_simplex(with_label(0, 3).data(), 5, 2));  // a label beyond k
+  EXPECT_FALSE(is_packed_simplex(with_label(5, 1).data(), 5, 2));  // d not in the last block
+  EXPECT_FALSE(is_packed_simplex(with_label(0, 2).data(), 5, 2));  // block 1 ({0}) left empty
+  EXPECT_FALSE(is_packed_simplex(with_label(6, 1).data(), 5, 2));  // label bytes after d
+  EXPECT_FALSE(is_packed_simplex(with_label(7, 1).data(), 5, 2));
+  for (const std::int64_t y : {std::int64_t{kMaxLatticeCoordinate} + 1, -std::int64_t{kMaxLatticeCoordinate} - 1}) {
+    std::vector<std::uint32_t> k = key;
+    k[3] = static_cast<std::uint32_t>(y);
+    EXPECT_FALSE(is_packed_simplex(k.data(), 5, 2)) << y;
+  }
+  key[3] = static_cast<std::uint32_t>(-kMaxLatticeCoordinate);
+  EXPECT_TRUE(is_packed_simplex(key.data(), 5, 2));
+  EXPECT_FALSE(is_packed_simplex(key.data(), 0, 0));
+}

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <fstream>
 #include <random>
+#include <set>
 #include <thread>
 
 #include "coxmesh/lattice/packed_index.h"
@@ -186,6 +187,50 @@ TEST(PackedKeyIndex, AppendedKeysAreIndexedAndDuplicatesReported) {
 
 // The parallel walk's bulk append: n ids at once, keys written afterwards in any order (here by two
 // threads, each taking every other id), then indexed like keys appended one by one.
+TEST(PackedKeyIndex, RepeatedKeysFoundBySortingHashes) {
+  std::mt19937_64 rng(11);
+  for (const int words : {1, 3, 8}) {
+    // Distinct keys, then the same with copies of earlier keys planted: the smallest id that
+    // repeats an earlier key is reported, whichever way the keys come in.
+    const std::size_t n = 50000;
+    UninitializedHugeVector<std::uint32_t> keys(n * words);
+    for (std::size_t i = 0; i < n; ++i)
+      for (int w = 0; w < words; ++w) keys[i * words + w] = static_cast<std::uint32_t>(i * 2654435761u) + w;
+    const PackedKeyIndex distinct = PackedKeyIndex::from_keys(words, UninitializedHugeVector<std::uint32_t>(keys));
+    ASSERT_EQ(distinct.size(), n);
+    EXPECT_FALSE(distinct.indexed());
+    EXPECT_EQ(distinct.repeated_key(), PackedKeyIndex::kAbsent) << words;
+    for (int trial = 0; trial < 5; ++trial) {
+      UninitializedHugeVector<std::uint32_t> planted = keys;
+      std::uint32_t first = PackedKeyIndex::kAbsent;
+      for (int copies = 0; copies < 3; ++copies) {
+        const std::size_t to = 1 + rng() % (n - 1), from = rng() % to;
+        std::copy_n(keys.data() + from * words, words, planted.data() + to * words);
+        first = std::min(first, static_cast<std::uint32_t>(to));
+      }
+      // (a planted copy may overwrite the original of another: recount from the keys themselves)
+      std::set<std::vector<std::uint32_t>> seen;
+      std::uint32_t expected = PackedKeyIndex::kAbsent;
+      for (std::uint32_t i = 0; i < n && expected == PackedKeyIndex::kAbsent; ++i)
+        if (!seen.insert({planted.begin() + i * words, planted.begin() + (i + 1) * words}).second) expected = i;
+      ASSERT_NE(expected, PackedKeyIndex::kAbsent);
+      EXPECT_LE(expected, first);
+      EXPECT_EQ(PackedKeyIndex::from_keys(words, std::move(planted)).repeated_key(), expected) << words;
+    }
+  }
+  // Every key the same: one run of equal hashes, sorted rather than compared pair by pair.
+  UninitializedHugeVector<std::uint32_t> same(200000 * 2, 7u);
+  EXPECT_EQ(PackedKeyIndex::from_keys(2, std::move(same)).repeated_key(), 1u);
+  // Keys that collide in the 32 bits sorted (only the full keys tell them apart) are not repeats:
+  // word pairs with the same hash tag found by search would do, but any tags that collide by
+  // chance among 2^20 keys (about 2^7 pairs) are compared as well.
+  UninitializedHugeVector<std::uint32_t> many(std::size_t{1} << 20);
+  for (std::uint32_t i = 0; i < many.size(); ++i) many[i] = i;
+  EXPECT_EQ(PackedKeyIndex::from_keys(1, std::move(many)).repeated_key(), PackedKeyIndex::kAbsent);
+  EXPECT_EQ(PackedKeyIndex(4).repeated_key(), PackedKeyIndex::kAbsent);
+  EXPECT_THROW(PackedKeyIndex::from_keys(3, UninitializedHugeVector<std::uint32_t>(4)), std::logic_error);
+}
+
 TEST(PackedKeyIndex, ParallelWritesOfKeysAppendedInBulk) {
   for (int words : {1, 4}) {
     PackedKeyIndex index(words);

@@ -54,31 +54,140 @@ std::uint64_t header_integer(const nlohmann::json& v, std::uint64_t max, const R
   return v.get<std::uint64_t>();
 }
 
-// Checks that a packed key is the canonical form of a simplex of dimension k in R^d.
-bool valid_key(const std::uint32_t* key, int d, int k) {
-  const Simplex s = unpack(key, d);
-  if (s.k != k) return false;
-  std::uint32_t seen = 0;
-  for (int i = 0; i <= d; ++i) {
-    if (s.block[i] > k) return false;
-    seen |= 1u << s.block[i];
-  }
-  if (seen != (k == 31 ? 0xFFFFFFFFu : (1u << (k + 1)) - 1)) return false;
-  for (int i = d + 1; i < 4 * ((d + 1 + 3) / 4); ++i)
-    if (s.block[i] != 0) return false;
-  for (int i = 0; i < d; ++i)
-    if (s.y[i] > kMaxLatticeCoordinate || s.y[i] < -kMaxLatticeCoordinate) return false;
-  return true;
-}
+// The checks of a complex read from a file (or assembled from pieces), in one pass per level over
+// arrays in memory: the keys on their words, repeated keys by a sort of their hashes, the incidences
+// by the facet test on packed keys. No hash table, no unpacked simplex, no allocation per cell.
+class ComplexChecker {
+ public:
+  ComplexChecker(const CellComplex& cc, const std::string& name) : cc_(cc), name_(name) {}
 
-// A facet of a cell (J, σ) is (J, a facet of σ) or, in a stratified complex, (J ∪ {i}, σ).
-bool is_stratified_facet(const CellLevel& below, std::uint32_t f, const CellLevel& level, std::uint32_t c, int d) {
-  const Simplex face = below.simplices.simplex(f, d), cell = level.simplices.simplex(c, d);
-  if (level.domains.empty()) return is_face_of(face, cell);
-  const std::uint64_t mine = level.domains[c], theirs = below.domains[f];
-  if (theirs == mine) return is_face_of(face, cell);
-  return (theirs & mine) == mine && std::popcount(theirs ^ mine) == 1 && face == cell;
-}
+  void check() const {
+    const int d = cc_.ambient_dimension, m = cc_.manifold_dimension;
+    if (d < 1 || d > kMaxDimension || m < 0 || m >= d || cc_.domain_count < 0 || cc_.domain_count > kMaxDomains ||
+        cc_.interior.size() != static_cast<std::size_t>(m + 1) ||
+        cc_.boundary.size() != static_cast<std::size_t>(m >= 1 ? m : 0))
+      fail("inconsistent dimensions");
+    for (int kind = 0; kind < 2; ++kind) {
+      const auto& levels = kind == 0 ? cc_.interior : cc_.boundary;
+      for (std::size_t j = 0; j < levels.size(); ++j) check_level(levels, j, kind);
+    }
+    check_boundary_facets();
+    const std::uint64_t n0 = cc_.interior[0].size(), nb0 = m >= 1 ? cc_.boundary[0].size() : 0;
+    if (cc_.vertices.size() != n0 * d || cc_.boundary_vertices.size() != nb0 * d)
+      fail("vertex counts do not match the vertex cells");
+    for (const auto* xs : {&cc_.vertices, &cc_.boundary_vertices}) {
+      bool finite = true;  // (branch-free: all are read anyway)
+      for (const double x : *xs) finite &= std::isfinite(x);
+      if (!finite) fail("a vertex coordinate is NaN or infinite");
+    }
+  }
+
+ private:
+  void check_level(const std::vector<CellLevel>& levels, std::size_t j, int kind) const {
+    const int d = cc_.ambient_dimension, m = cc_.manifold_dimension, domains = cc_.domain_count;
+    const int words = domains ? stratum_key_words(d) : packed_words(d);
+    const CellLevel& level = levels[j];
+    const std::uint64_t n = level.size();
+    if (level.simplices.words() != words) fail("a level has keys of the wrong width");
+    const int dim = d - m + static_cast<int>(j) + kind;  // interior: k + j; boundary: k + 1 + j
+    UninitializedHugeVector<std::uint64_t> entries(n);   // (hashed here, while the key is in the cache)
+    for (std::uint32_t c = 0; c < n; ++c) {
+      const std::uint32_t* key = level.simplices.key(c);
+      // (a stratified cell of stratum J lies on a simplex of dimension k + |J| + j)
+      int on_domains = 0;
+      if (domains) {
+        const std::uint64_t stratum = stratum_of_key(key, d);
+        on_domains = std::popcount(stratum);
+        if ((domains < 64 && stratum >> domains != 0) || on_domains > m - static_cast<int>(j))
+          fail("cell " + std::to_string(c) + " of a level lies on domains that do not exist or meet too often");
+      }
+      if (!is_packed_simplex(key, d, dim + on_domains))
+        fail("cell " + std::to_string(c) + " of a level has an invalid simplex key");
+      entries[c] = PackedKeyIndex::repeat_entry(key, words, c);
+    }
+    if (level.simplices.repeated_key(std::move(entries)) != PackedKeyIndex::kAbsent)
+      fail("a simplex key appears twice in one level");
+    if (level.domains.size() != (domains > 0 && kind == 0 ? n : 0)) fail("domain bitmasks on the wrong levels");
+    for (std::uint64_t c = 0; c < level.domains.size(); ++c)
+      if (level.domains[c] != stratum_of_key(level.simplices.key(static_cast<std::uint32_t>(c)), d))
+        fail("cell " + std::to_string(c) + " of a level has domains that do not match its key");
+    if (level.facet_offsets.size() != n + 1 || level.facet_offsets[0] != 0 ||
+        level.facet_offsets[n] != level.facet_ids.size())
+      fail("facet offsets do not match the facet count");
+    for (std::uint64_t c = 0; c < n; ++c)
+      if (level.facet_offsets[c] > level.facet_offsets[c + 1]) fail("facet offsets are not increasing");
+    const std::uint64_t below = j == 0 ? 0 : levels[j - 1].size();
+    std::uint32_t largest = 0;
+    for (const std::uint32_t id : level.facet_ids) largest = std::max(largest, id);
+    if (!level.facet_ids.empty() && largest >= below) fail("a facet id is out of range");
+    if (j > 0) check_incidences(levels[j - 1], level);
+    if (!level.boundary_facet.empty() && (kind != 0 || j == 0 || level.boundary_facet.size() != n))
+      fail("boundary facets are only allowed on interior levels j >= 1");
+  }
+
+  // Every incidence must be one of the face relation: distinct facets, each the cell of a facet of
+  // the cell's simplex (anything else would make the topology meaningless, or its reduction loop).
+  // A facet of a cell (J, σ) is (J, a facet of σ) or, in a stratified complex, (J ∪ {i}, σ). Facet
+  // cells of one level have distinct keys (checked before), so they are distinct exactly when the
+  // facets of σ they lie on (the j of facet_without) and the domains they add are: a bit each.
+  void check_incidences(const CellLevel& below, const CellLevel& level) const {
+    const int d = cc_.ambient_dimension, simplex_words = packed_words(d);
+    const bool stratified = !level.domains.empty();
+    // The facets are cells of the level below, here and there in it: their keys are fetched some
+    // incidences ahead (a cache miss each otherwise).
+    constexpr std::size_t kAhead = 16;
+    const std::uint32_t* ids = level.facet_ids.data();
+    const std::size_t entries = level.facet_ids.size();
+    for (std::uint32_t c = 0; c < level.size(); ++c) {
+      const std::uint32_t* sigma = level.simplices.key(c);
+      std::uint64_t faces = 0, added_domains = 0;
+      for (std::size_t e = level.facet_offsets[c]; e < level.facet_offsets[c + 1]; ++e) {
+        if (e + kAhead < entries) __builtin_prefetch(below.simplices.key(ids[e + kAhead]));
+        const std::uint32_t f = ids[e], *tau = below.simplices.key(f);
+        bool repeated;
+        if (!stratified || below.domains[f] == level.domains[c]) {
+          const int j = packed_facet_index(tau, sigma, d);
+          if (j < 0) fail_cell(c, "lists a facet that is not a face of it");
+          repeated = faces >> j & 1;
+          faces |= std::uint64_t{1} << j;
+        } else {
+          const std::uint64_t mine = level.domains[c], theirs = below.domains[f];
+          if ((theirs & mine) != mine || std::popcount(theirs ^ mine) != 1 ||
+              !std::equal(tau, tau + simplex_words, sigma))
+            fail_cell(c, "lists a facet that is not a face of it");
+          repeated = (added_domains & (theirs ^ mine)) != 0;
+          added_domains |= theirs ^ mine;
+        }
+        if (repeated) fail_cell(c, "lists the same facet twice");
+      }
+    }
+  }
+
+  // The boundary facet of an interior cell is the boundary cell on the same simplex.
+  void check_boundary_facets() const {
+    const int words = cc_.interior[0].simplices.words();
+    for (std::size_t j = 1; j < cc_.interior.size(); ++j) {
+      const CellLevel& level = cc_.interior[j];
+      for (std::uint32_t c = 0; c < level.boundary_facet.size(); ++c) {
+        const std::uint32_t id = level.boundary_facet[c];
+        if (id == CellLevel::kNone) continue;
+        if (j - 1 >= cc_.boundary.size() || id >= cc_.boundary[j - 1].size())
+          fail("a boundary facet id is out of range");
+        const std::uint32_t* key = cc_.boundary[j - 1].simplices.key(id);
+        if (!std::equal(key, key + words, level.simplices.key(c)))
+          fail_cell(c, "has a boundary facet on another simplex");
+      }
+    }
+  }
+
+  [[noreturn]] void fail(const std::string& why) const { throw InputError(name_ + ": " + why); }
+  [[noreturn]] void fail_cell(std::uint64_t c, const char* what) const {
+    fail("cell " + std::to_string(c) + " of a level " + what);
+  }
+
+  const CellComplex& cc_;
+  const std::string& name_;
+};
 
 }  // namespace
 
@@ -116,6 +225,8 @@ void write_native(std::ostream& os, const CellComplex& cc, const NativeInfo& inf
   write_array(os, cc.vertices.data(), cc.vertices.size());
   write_array(os, cc.boundary_vertices.data(), cc.boundary_vertices.size());
 }
+
+void check_native(const CellComplex& cc, const std::string& name) { ComplexChecker(cc, name).check(); }
 
 NativeFile read_native(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -210,76 +321,27 @@ NativeFile read_native(std::istream& in, const std::string& name) {
   cc.ambient_dimension = d;
   cc.manifold_dimension = m;
   cc.domain_count = domain_count;
-  const int k = d - m;
+  // Everything is read first (the sizes are those of the header, checked against the file's), then
+  // checked as a whole.
   for (int kind = 0; kind < 2; ++kind) {
     auto& levels = kind == 0 ? cc.interior : cc.boundary;
     for (std::size_t j = 0; j < shapes[kind].size(); ++j) {
       const auto [n, f] = shapes[kind][j];
       CellLevel level;
-      level.simplices = PackedKeyIndex(words);
-      level.simplices.reserve(n);
-      const auto keys = r.array<std::uint32_t>(n * words, "keys");
-      const int dim = k + static_cast<int>(j) + kind;  // interior: k + j; boundary: k + 1 + j
-      for (std::uint64_t c = 0; c < n; ++c) {
-        const std::uint32_t* key = keys.data() + c * words;
-        // (a stratified cell of stratum J lies on a simplex of dimension k + |J| + j)
-        const std::uint64_t stratum = domain_count ? stratum_of_key(key, d) : 0;
-        if ((domain_count < 64 && stratum >> domain_count != 0) || std::popcount(stratum) > m - static_cast<int>(j))
-          r.fail("cell " + std::to_string(c) + " of a level lies on domains that do not exist or meet too often");
-        if (!valid_key(key, d, dim + std::popcount(stratum)))
-          r.fail("cell " + std::to_string(c) + " of a level has an invalid simplex key");
-        if (!level.simplices.insert(key).second) r.fail("a simplex key appears twice in one level");
-      }
+      level.simplices = PackedKeyIndex::from_keys(words, r.array<std::uint32_t>(n * words, "keys"));
       level.facet_offsets = r.array<std::uint32_t>(n + 1, "facet offsets");
       level.facet_ids = r.array<std::uint32_t>(f, "facet ids");
       if (has_bf[kind][j]) level.boundary_facet = r.array<std::uint32_t>(n, "boundary facets");
       if (has_domains[kind][j]) {
         const auto masks = r.array<std::uint64_t>(n, "domain bitmasks");
         level.domains.assign(masks.begin(), masks.end());
-        for (std::uint64_t c = 0; c < n; ++c)
-          if (level.domains[c] != stratum_of_key(level.simplices.key(static_cast<std::uint32_t>(c)), d))
-            r.fail("cell " + std::to_string(c) + " of a level has domains that do not match its key");
       }
-      if (level.facet_offsets[0] != 0 || level.facet_offsets[n] != f)
-        r.fail("facet offsets do not match the facet count");
-      for (std::uint64_t c = 0; c < n; ++c)
-        if (level.facet_offsets[c] > level.facet_offsets[c + 1]) r.fail("facet offsets are not increasing");
-      const std::uint64_t below = j == 0 ? 0 : levels[j - 1].size();
-      for (std::uint32_t id : level.facet_ids)
-        if (id >= below) r.fail("a facet id is out of range");
-      // Every incidence must be one of the face relation: distinct facets, each the cell of a facet
-      // of the cell's simplex (anything else would make the topology meaningless, or its reduction loop).
-      for (std::uint64_t c = 0; j > 0 && c < n; ++c) {
-        const auto facets = level.facets(static_cast<std::uint32_t>(c));
-        for (std::size_t a = 0; a < facets.size(); ++a) {
-          if (std::find(facets.begin(), facets.begin() + a, facets[a]) != facets.begin() + a)
-            r.fail("cell " + std::to_string(c) + " of a level lists the same facet twice");
-          if (!is_stratified_facet(levels[j - 1], facets[a], level, static_cast<std::uint32_t>(c), d))
-            r.fail("cell " + std::to_string(c) + " of a level lists a facet that is not a face of it");
-        }
-      }
-      if (!level.boundary_facet.empty() && (kind != 0 || j == 0))
-        r.fail("boundary facets are only allowed on interior levels j >= 1");
       levels.push_back(std::move(level));
-    }
-  }
-  // The boundary facet of an interior cell is the boundary cell on the same simplex.
-  for (std::size_t j = 1; j < cc.interior.size(); ++j) {
-    const CellLevel& level = cc.interior[j];
-    for (std::uint32_t c = 0; c < level.boundary_facet.size(); ++c) {
-      const std::uint32_t id = level.boundary_facet[c];
-      if (id == CellLevel::kNone) continue;
-      if (j - 1 >= cc.boundary.size() || id >= cc.boundary[j - 1].size()) r.fail("a boundary facet id is out of range");
-      const std::uint32_t* key = cc.boundary[j - 1].simplices.key(id);
-      if (!std::equal(key, key + words, level.simplices.key(c)))
-        r.fail("cell " + std::to_string(c) + " of a level has a boundary facet on another simplex");
     }
   }
   cc.vertices = r.array<double>(n0 * d, "vertices");
   cc.boundary_vertices = r.array<double>(nb0 * d, "boundary vertices");
-  for (const auto* xs : {&cc.vertices, &cc.boundary_vertices})
-    for (double x : *xs)
-      if (!std::isfinite(x)) r.fail("a vertex coordinate is NaN or infinite");
+  ComplexChecker(cc, name).check();
   return out;
 }
 

@@ -51,12 +51,20 @@ struct NativeFile {
 /// (checked at compile time).
 void write_native(std::ostream& os, const CellComplex& cc, const NativeInfo& info = {});
 
-/// Reads a .cxm file and rebuilds the complex exactly: keys are re-inserted in file order, so
-/// every cell keeps its id, and every array equals the written one. Validates everything (header,
-/// sizes against the file size, simplex keys, facet ids in range, finite coordinates).
+/// Reads a .cxm file and rebuilds the complex exactly: every cell keeps its id, and every array
+/// equals the written one. The levels' keys come without a hash table, as from build_cell_complex
+/// (reindex() before find()). Validates everything (header, sizes against the file size, then
+/// check_native).
 ///   Throws InputError naming the file for anything wrong.
 NativeFile read_native(const std::string& path);
 /// The same from a stream; `name` is used in error messages.
 NativeFile read_native(std::istream& in, const std::string& name);
+
+/// The checks of read_native on a complex in memory (e.g. assembled from the pieces of several
+/// processes): the levels' shapes, every key the canonical form of a simplex of its level's
+/// dimension (and stratum), no key twice in a level, CSR offsets, facet ids in range, every
+/// incidence one of the face relation with no facet twice, boundary facets on the same simplex,
+/// finite coordinates. Throws InputError naming `name` for the first thing wrong.
+void check_native(const CellComplex& cc, const std::string& name);
 
 }  // namespace coxmesh

@@ -26,7 +26,7 @@ namespace coxmesh {
 std::string native_piece_path(const std::string& path, int rank);
 
 void write_native_piece(std::ostream& os, const CellComplexPart& part);
-/// Reads a piece (sizes, keys and ids checked; the assembled complex is checked by read_native).
+/// Reads a piece (sizes and offsets checked; the assembled complex is checked by check_native).
 CellComplexPart read_native_piece(std::istream& in, const std::string& name);
 
 /// Writes the manifest of `pieces` pieces of `path` (the pieces' file names, relative to it).

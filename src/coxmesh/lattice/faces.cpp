@@ -1,6 +1,8 @@
 // Thesis §3.5 (faces and the face test).
 #include "coxmesh/lattice/faces.h"
 
+#include <algorithm>
+#include <bit>
 #include <string>
 
 namespace coxmesh {
@@ -52,6 +54,66 @@ int extra_vertex_index(const Simplex& tau, const Simplex& mu) {
   for (int i = 0; i <= tau.d; ++i)
     if (tau.block[i] != mu.block[i] && tau.block[i] < b) b = tau.block[i];
   return b + 1;
+}
+
+namespace {
+
+// kD > 0: the loops over d unrolled for this d (the common small dimensions; `check` of T³ ⊂ R⁶,
+// 17.5 M incidences, took 4 % less CPU); 0: any d.
+template <int kD>
+int facet_index(const std::uint32_t* tau, const std::uint32_t* sigma, int runtime_d) {
+  const int d = kD > 0 ? kD : runtime_d;
+  // Labels are bytes in memory order (pack() copies them so); four to a word, read a word at a time
+  // below where every byte gets the same operation (labels ≤ 31: no carry crosses a byte).
+  const auto* ls = reinterpret_cast<const unsigned char*>(sigma + d);
+  const auto* lt = reinterpret_cast<const unsigned char*>(tau + d);
+  const int l = ls[d], label_words = (d + 1 + 3) / 4;
+  if (l < 1 || lt[d] != l - 1) return -1;
+  bool same_base = true;
+  for (int i = 0; i < d; ++i) same_base &= tau[i] == sigma[i];
+  bool same = true;
+  if (!same_base) {
+    // Only facet_without(σ, 0) moves the base, to v_1 = y + e(ω_0); block 0 joins the last block
+    // (label l − 1) and the other labels drop by one. The label bytes after d stay zero.
+    for (int i = 0; i < d; ++i) same &= tau[i] == sigma[i] + (ls[i] == 0 ? 1u : 0u);
+    for (int w = 0; w < label_words; ++w) {
+      const int used = std::min(4, d + 1 - 4 * w);
+      const std::uint32_t ones = 0x01010101u & (used == 4 ? ~0u : (std::uint32_t{1} << 8 * used) - 1);
+      const std::uint32_t zero = ((0x80808080u - sigma[d + w]) & 0x80808080u) >> 7 & ones;  // 1 in each 0 label
+      same &= tau[d + w] == sigma[d + w] + zero * static_cast<std::uint32_t>(l) - ones;
+    }
+    return same ? 0 : -1;
+  }
+  // facet_without(σ, j), j ≥ 1, merges blocks j − 1 and j: exactly the labels ≥ j drop by one, so j
+  // is the smallest label of σ that changed (d's always does).
+  std::uint32_t changed = 0;
+  for (int i = 0; i <= d; ++i) changed |= std::uint32_t{lt[i] != ls[i]} << (ls[i] & 31);
+  const int j = std::countr_zero(changed);
+  if (j < 1) return -1;
+  // A label ≥ j gets its high bit from label + 128 − j; the zero bytes after d stay zero.
+  const std::uint32_t below_j = 0x01010101u * static_cast<std::uint32_t>(0x80 - j);
+  for (int w = 0; w < label_words; ++w)
+    same &= tau[d + w] == sigma[d + w] - (((sigma[d + w] + below_j) & 0x80808080u) >> 7);
+  return same ? j : -1;
+}
+
+}  // namespace
+
+int packed_facet_index(const std::uint32_t* tau, const std::uint32_t* sigma, int d) {
+  switch (d) {
+    case 2:
+      return facet_index<2>(tau, sigma, d);
+    case 3:
+      return facet_index<3>(tau, sigma, d);
+    case 4:
+      return facet_index<4>(tau, sigma, d);
+    case 5:
+      return facet_index<5>(tau, sigma, d);
+    case 6:
+      return facet_index<6>(tau, sigma, d);
+    default:
+      return facet_index<0>(tau, sigma, d);
+  }
 }
 
 void FaceEnumerator::reset(const Simplex& sigma, int k) {

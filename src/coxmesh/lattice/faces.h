@@ -21,6 +21,11 @@ Simplex facet_without(const Simplex& sigma, int j);
 /// vertex i of μ below that index and vertex i + 1 from it on. O(d).
 int extra_vertex_index(const Simplex& tau, const Simplex& mu);
 
+/// For packed keys (simplex.h) τ of dimension l − 1 and σ of dimension l ≥ 1, both of the form pack()
+/// writes (is_packed_simplex): the j with τ = facet_without(σ, j), or −1 when τ is not a facet of σ.
+/// The facet test on the words, O(d), with no unpack: for checking the incidences of a file.
+int packed_facet_index(const std::uint32_t* tau, const std::uint32_t* sigma, int d);
+
 /// Enumerates the k-faces of a simplex in lexicographic order of their vertex indices.
 /// No allocation: reset() and next() work on fixed-size state.
 ///

@@ -201,6 +201,33 @@ class PackedKeyIndex {
     copy.size_ = static_cast<std::uint32_t>(order.size());
     return copy;
   }
+  /// An index of `keys` (words() words each, back to back: ids 0, 1, … in that order) without a
+  /// hash table, as after release_index(): the array becomes the index's own (no copy, no insert).
+  /// For keys read in bulk, e.g. a level of a .cxm file; repeated_key() tells whether they are
+  /// distinct, reindex() builds the table if look-ups are needed.
+  static PackedKeyIndex from_keys(int words, UninitializedHugeVector<std::uint32_t>&& keys) {
+    if (words < 1 || keys.size() % static_cast<std::size_t>(words) != 0)
+      throw std::logic_error("PackedKeyIndex::from_keys: not a whole number of keys");
+    if (keys.size() / static_cast<std::size_t>(words) > kMaxEntries)
+      throw InputError("more than 2^31 - 1 entries in one index");
+    PackedKeyIndex index(words);
+    index.release_index();
+    index.size_ = static_cast<std::uint32_t>(keys.size() / static_cast<std::size_t>(words));
+    index.keys_ = std::move(keys);
+    return index;
+  }
+  /// The smallest id whose key equals the key of a smaller id, or kAbsent when all keys are
+  /// distinct. Indexed or not; no hash table: the (hash, id) pairs are radix sorted by hash, and
+  /// keys are compared only where hashes are equal. A few sequential passes over n 8-byte pairs,
+  /// where inserting into a table costs a cache (and TLB) miss per key.
+  std::uint32_t repeated_key() const;
+  /// The same from the entries of ids 0, 1, … in order (repeat_entry), made by a caller that reads
+  /// the keys anyway: one pass over the keys less. The vector is used as scratch.
+  std::uint32_t repeated_key(UninitializedHugeVector<std::uint64_t>&& entries) const;
+  /// The entry of a key for repeated_key(): the top 32 bits of its hash, then its id.
+  static std::uint64_t repeat_entry(const std::uint32_t* key, int words, std::uint32_t id) {
+    return hash_words(key, words) >> 32 << 32 | id;
+  }
   /// Builds the hash table again after release_index().
   void reindex() {
     if (indexed()) return;

@@ -115,6 +115,26 @@ Simplex unpack(const std::uint32_t* words, int d) {
   return s;
 }
 
+bool is_packed_simplex(const std::uint32_t* words, int d, int k) {
+  if (d < 1 || d > kMaxDimension || k < 0 || k > d) return false;
+  // (branch-free over the coordinates: a valid key, the common case, reads them all anyway)
+  bool in_range = true;
+  for (int i = 0; i < d; ++i)
+    in_range &= static_cast<std::uint32_t>(words[i]) + std::uint32_t{kMaxLatticeCoordinate} <=
+                2 * std::uint32_t{kMaxLatticeCoordinate};
+  const auto* labels = reinterpret_cast<const unsigned char*>(words + d);  // (in memory order, as pack() copies them)
+  const int label_bytes = 4 * ((d + 1 + 3) / 4);
+  std::uint32_t seen = 0, beyond_k = 0;
+  for (int i = 0; i <= d; ++i) {
+    beyond_k |= labels[i] > k;
+    seen |= std::uint32_t{1} << (labels[i] & 31);
+  }
+  unsigned char padding = 0;
+  for (int i = d + 1; i < label_bytes; ++i) padding |= labels[i];
+  const std::uint32_t all = k == 31 ? ~0u : (std::uint32_t{1} << (k + 1)) - 1;
+  return in_range && !beyond_k && padding == 0 && labels[d] == k && seen == all;
+}
+
 std::uint64_t hash_value(const Simplex& s) {
   std::array<std::uint32_t, packed_words(kMaxDimension)> w;
   pack(s, w.data());

@@ -85,6 +85,11 @@ bool operator<(const Simplex& a, const Simplex& b);
 constexpr int packed_words(int d) { return d + (d + 1 + 3) / 4; }
 void pack(const Simplex& s, std::uint32_t* out);
 Simplex unpack(const std::uint32_t* words, int d);
+/// Whether `words` is the packed form of a simplex of dimension k in R^d, as pack() writes it: the
+/// block labels of 0..d use each of 0..k, d's is k (the last block), the label bytes after d are
+/// zero, and every coordinate is within ±kMaxLatticeCoordinate. O(d), on the words (no unpack), for
+/// keys read from a file.
+bool is_packed_simplex(const std::uint32_t* words, int d, int k);
 
 /// Strong 64-bit hash of packed words (a multiply-xorshift mix per word, then a final avalanche).
 inline std::uint64_t hash_words(const std::uint32_t* w, int n) {
