@@ -201,6 +201,15 @@ class PackedKeyIndex {
     copy.size_ = static_cast<std::uint32_t>(order.size());
     return copy;
   }
+  /// n ids whose keys are not kept (words() = 0): size() counts them; there is no key to read and
+  /// no look-up. (A complex handed to a mesh writer: the writers read its levels' sizes, never keys.)
+  static PackedKeyIndex without_keys(std::uint32_t n) {
+    if (n > kMaxEntries) throw InputError("more than 2^31 - 1 entries in one index");
+    PackedKeyIndex index(0);
+    index.release_index();
+    index.size_ = n;
+    return index;
+  }
   /// Builds the hash table again after release_index().
   void reindex() {
     if (indexed()) return;
