@@ -323,3 +323,14 @@ TEST(HugePageAllocator, ZeroedVectorsAreZero) {
       ASSERT_TRUE(std::all_of(v.begin(), v.end(), [](std::uint64_t x) { return x == 0; })) << n << " words";
     }
 }
+
+// A level handed to a mesh writer keeps its size without its keys: no memory for them, no look-up.
+TEST(PackedKeyIndex, WithoutKeysCountsOnly) {
+  const PackedKeyIndex index = PackedKeyIndex::without_keys(1000);
+  EXPECT_EQ(index.size(), 1000u);
+  EXPECT_EQ(index.words(), 0);
+  EXPECT_FALSE(index.indexed());
+  EXPECT_EQ(index.bytes(), 0u);
+  const std::uint32_t key[1] = {7};
+  EXPECT_THROW(index.find(key), std::logic_error);
+}

@@ -538,11 +538,13 @@ namespace {
 
 // The cells of one level of a closure that other ranks own, in the order they arrive.
 struct Halo {
-  explicit Halo(int words) : keys(words) {}
-  PackedKeyIndex keys;
+  std::vector<std::uint32_t> keys;  // (packed, one after the other: read by the next round's requests only)
   std::vector<std::uint32_t> ids, facet_offsets{0}, facets, boundary_facet;
   std::vector<double> rows;
 };
+
+// Frees a level's keys, keeping its size: neither the topology nor a mesh writer reads a key.
+void release_keys(CellLevel& level) { level.simplices = PackedKeyIndex::without_keys(level.simplices.size()); }
 
 }  // namespace
 
@@ -562,7 +564,7 @@ CellClosure closure_for_writing(CellComplexPart& part, Communicator& comm) {
   for (int kind = 0; kind < 2; ++kind)
     for (int j = 0; j <= top[kind]; ++j) {
       mine[kind].emplace_back(level_of(kind, j).size(), j == top[kind] ? 1 : 0);
-      halo[kind].emplace_back(words);
+      halo[kind].emplace_back();
     }
   // The cell of global id g of level j of this rank, or kAbsent.
   const auto own = [&](int kind, int j, std::uint32_t g) {
@@ -622,7 +624,7 @@ CellClosure closure_for_writing(CellComplexPart& part, Communicator& comm) {
         const Halo& h = halo[kind][j];
         for (std::uint32_t i = 0; i < h.ids.size(); ++i)
           take_facets(kind, {h.facets.data() + h.facet_offsets[i], h.facets.data() + h.facet_offsets[i + 1]},
-                      h.boundary_facet[i], h.keys.key(i), false);
+                      h.boundary_facet[i], h.keys.data() + std::size_t{i} * words, false);
       }
     });
     // The owners look the asked simplices up (a hash table for this round only).
@@ -668,7 +670,7 @@ CellClosure closure_for_writing(CellComplexPart& part, Communicator& comm) {
           if (!found) continue;
           take(in, head, 3);
           Halo& h = halo[kind][j - 1];
-          h.keys.insert(key);
+          h.keys.insert(h.keys.end(), key, key + words);
           h.ids.push_back(head[0]);
           h.facets.resize(h.facets.size() + head[1]);
           take(in, h.facets.data() + h.facets.size() - head[1], head[1]);
@@ -681,6 +683,14 @@ CellClosure closure_for_writing(CellComplexPart& part, Communicator& comm) {
         }
       }
     });
+    // Level j's keys have served (its cells' faces asked for, its halo's too), and level 0's after
+    // the last round's look-ups: the assembly below reads none.
+    for (int kind = 0; kind < 2; ++kind)
+      if (j <= top[kind]) {
+        release_keys(level_of(kind, j));
+        if (j == 1) release_keys(level_of(kind, 0));  // (the last look-ups were this round's)
+        std::vector<std::uint32_t>().swap(halo[kind][j].keys);
+      }
   }
 
   // Each level in global order (this rank's cells merged with the others'), its facets and
@@ -699,21 +709,30 @@ CellClosure closure_for_writing(CellComplexPart& part, Communicator& comm) {
     for (int kind = 0; kind < 2; ++kind) {
       if (kind == 1 && j >= m) continue;
       CellLevel level;
-      level.simplices = PackedKeyIndex(words);
+      level.simplices = PackedKeyIndex::without_keys(0);
       level.facet_offsets.assign(1, 0);
       std::vector<std::uint32_t>& ids = (kind ? out.boundary_ids : out.interior_ids).emplace_back();
       if (j <= top[kind]) {
         const CellLevel& from = level_of(kind, j);
         const std::vector<std::uint32_t>& from_ids = ids_of(kind, j);
+        const std::vector<std::uint8_t>& in_closure = mine[kind][j];
         const Halo& h = halo[kind][j];
         std::vector<std::uint32_t> order(h.ids.size());  // the halo by global id
         std::iota(order.begin(), order.end(), 0u);
         std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return h.ids[a] < h.ids[b]; });
         const bool with_bf = kind == 0 && j >= 1 && has_boundary;
-        const auto append = [&](std::uint32_t g, const std::uint32_t* key, std::span<const std::uint32_t> facets,
-                                std::uint32_t bf, const double* row) {
+        // (every array at its final size at once: grown cell by cell, each would be copied as it grows)
+        std::size_t cells = h.ids.size(), incidences = h.facets.size();
+        for (std::uint32_t c = 0; c < in_closure.size(); ++c)
+          if (in_closure[c]) ++cells, incidences += from.facet_offsets[c + 1] - from.facet_offsets[c];
+        ids.reserve(cells);
+        level.facet_offsets.reserve(cells + 1);
+        level.facet_ids.reserve(incidences);
+        if (with_bf) level.boundary_facet.reserve(cells);
+        if (j == 0) (kind ? local.boundary_vertices : local.vertices).reserve(cells * static_cast<std::size_t>(d));
+        const auto append = [&](std::uint32_t g, std::span<const std::uint32_t> facets, std::uint32_t bf,
+                                const double* row) {
           ids.push_back(g);
-          level.simplices.insert(key);
           for (const std::uint32_t f : facets) level.facet_ids.push_back(local_id(kind, j - 1, f));
           level.facet_offsets.push_back(static_cast<std::uint32_t>(level.facet_ids.size()));
           if (with_bf) level.boundary_facet.push_back(bf == CellLevel::kNone ? bf : local_id(1, j - 1, bf));
@@ -726,31 +745,31 @@ CellClosure closure_for_writing(CellComplexPart& part, Communicator& comm) {
         const auto append_halo_below = [&](std::uint64_t g) {
           for (; next < order.size() && h.ids[order[next]] < g; ++next) {
             const std::uint32_t i = order[next];
-            append(h.ids[i], h.keys.key(i),
-                   {h.facets.data() + h.facet_offsets[i], h.facets.data() + h.facet_offsets[i + 1]},
+            append(h.ids[i], {h.facets.data() + h.facet_offsets[i], h.facets.data() + h.facet_offsets[i + 1]},
                    h.boundary_facet[i], j == 0 ? h.rows.data() + std::size_t{i} * d : nullptr);
           }
         };
-        for (std::uint32_t c = 0; c < from.size(); ++c)
-          if (mine[kind][j][c]) {
+        for (std::uint32_t c = 0; c < in_closure.size(); ++c)
+          if (in_closure[c]) {
             append_halo_below(from_ids[c]);
-            append(from_ids[c], from.simplices.key(c), from.facets(c),
-                   from.boundary_facet.empty() ? CellLevel::kNone : from.boundary_facet[c],
+            append(from_ids[c], from.facets(c), from.boundary_facet.empty() ? CellLevel::kNone : from.boundary_facet[c],
                    j == 0 ? rows.data() + std::size_t{c} * d : nullptr);
           }
         append_halo_below(~std::uint64_t{0});
-        level.simplices.release_index();
+        level.simplices = PackedKeyIndex::without_keys(static_cast<std::uint32_t>(ids.size()));
         std::vector<std::uint8_t>().swap(mine[kind][j]);
-        halo[kind][j] = Halo(words);
+        halo[kind][j] = Halo();
+        if (j == 0) (kind ? cc.boundary_vertices : cc.vertices) = PointArray{};  // (copied: the topology needs none)
       }
       (kind ? local.boundary : local.interior).push_back(std::move(level));
     }
+  release_all_but_incidences(part);  // (the levels above those of the file, if any)
   return out;
 }
 
 void release_all_but_incidences(CellComplexPart& part) {
   for (auto* levels : {&part.cells.interior, &part.cells.boundary})
-    for (CellLevel& level : *levels) level.simplices = PackedKeyIndex{1};
+    for (CellLevel& level : *levels) release_keys(level);
   part.cells.vertices = PointArray{};
   part.cells.boundary_vertices = PointArray{};
 }

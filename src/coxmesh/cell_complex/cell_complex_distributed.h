@@ -40,11 +40,15 @@ CellComplex assemble_cell_complex(std::vector<CellComplexPart>&& parts);
 /// What a rank writes of its part in a mesh file: the cells it owns of the levels the file shows
 /// (interior min(m, 3), boundary min(m, 3, m − 1)) and every face of them, fetched from their owners
 /// (a complex with ids of its own, each level in global order), with the global id of each cell.
+/// Its levels keep no keys (PackedKeyIndex::without_keys): no mesh writer reads them, and at 8–12
+/// words per cell in R⁶–R⁹ they would be most of it.
 struct CellClosure {
   CellComplex cells;
   std::vector<std::vector<std::uint32_t>> interior_ids, boundary_ids;
 };
-/// Collective. The levels of `part` are indexed again (for the look-ups of the other ranks).
+/// Collective. The levels of `part` are indexed again (for the look-ups of the other ranks), and
+/// its keys and vertex rows released as soon as no round needs them: the part is left as
+/// release_all_but_incidences leaves it (all that the topology reads).
 CellClosure closure_for_writing(CellComplexPart& part, Communicator& comm);
 
 /// Releases the keys of the part's cells and its vertex rows, keeping the incidences, the ids and

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <ostream>
+#include <span>
 #include <vector>
 
 #include "coxmesh/cell_complex/cell_complex.h"
@@ -32,9 +33,10 @@ WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projectio
 
 /// The ids that the cells and vertices of a piece have in the whole complex (a piece of a .pvtu,
 /// written by one of several processes): per cell of each level, interior[j] and boundary[j] (its id
-/// in its level, as in the .cxm file), and per vertex in the numbering of polygons.h.
+/// in its level, as in the .cxm file; read where they are, e.g. in a CellClosure), and per vertex
+/// in the numbering of polygons.h.
 struct VtuGlobalIds {
-  std::vector<std::vector<std::uint32_t>> interior, boundary;
+  std::vector<std::span<const std::uint32_t>> interior, boundary;
   std::vector<std::uint64_t> points;
 };
 /// write_vtu with point data and cell data "global_id" (UInt64): ids.points, and the id of the cell

@@ -26,8 +26,8 @@ WrittenCounts write_vtu_piece_file(const std::string& path, int rank, const Cell
   check_vtu_pieces(options);
   const CellComplex& cc = closure.cells;
   VtuGlobalIds ids;
-  ids.interior = closure.interior_ids;
-  ids.boundary = closure.boundary_ids;
+  for (const std::vector<std::uint32_t>& level : closure.interior_ids) ids.interior.emplace_back(level);
+  for (const std::vector<std::uint32_t>& level : closure.boundary_ids) ids.boundary.emplace_back(level);
   for (const std::uint32_t g : closure.interior_ids[0]) ids.points.push_back(g);
   if (!closure.boundary_ids.empty())
     for (const std::uint32_t g : closure.boundary_ids[0]) ids.points.push_back(vertices + g);

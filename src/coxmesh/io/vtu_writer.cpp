@@ -3,7 +3,9 @@
 #include <array>
 #include <bit>
 #include <climits>
+#include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -123,16 +125,18 @@ std::size_t face_stream_bound(const CellComplex& cc, CellKind kind, const Ragged
   return n;
 }
 
-// One appended-data block: UInt64 byte count, then the bytes.
+// One appended-data block: UInt64 byte count, then the bytes, those of one array or of two one
+// after the other (written from where they are: no copy joins them).
 struct Block {
   std::string xml;  // the DataArray element, without its offset attribute
-  const void* data;
-  std::uint64_t bytes;
+  std::array<std::span<const std::byte>, 2> parts;
+  std::uint64_t bytes() const { return parts[0].size() + parts[1].size(); }
 };
 
-template <class T>
-Block block(std::string xml, const std::vector<T>& v) {
-  return {std::move(xml), v.data(), v.size() * sizeof(T)};
+template <class V>
+Block block(std::string xml, const V& v, const V& then = {}) {
+  return {std::move(xml),
+          {std::as_bytes(std::span(v.data(), v.size())), std::as_bytes(std::span(then.data(), then.size()))}};
 }
 
 // Whether every number of the connectivity, offsets and faces arrays fits in Int32: a bound from
@@ -153,8 +157,7 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
                            const VtuGlobalIds* ids) {
   const std::string index_type = sizeof(Index) == 4 ? "Int32" : "Int64";
   const int d = cc.ambient_dimension, m = cc.manifold_dimension;
-  const std::vector<double> xs = vertex_coordinates(cc);
-  const std::vector<double> p3 = project_points(projection, xs);
+  const PointArray p3 = project_vertices(projection, cc);
   const std::uint32_t n0 = cell_count(cc, CellKind::interior, 0), nv = vertex_count(cc);
   WrittenCounts counts;
   counts.points = nv;
@@ -275,7 +278,7 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
   if (projection.changes_points)
     point_data.push_back(block(R"(<DataArray type="Float64" Name="coordinates" NumberOfComponents=")" +
                                    std::to_string(d) + R"(" format="appended")",
-                               xs));
+                               cc.vertices, cc.boundary_vertices));
   cell_data.push_back(block(R"(<DataArray type="UInt8" Name="dimension" format="appended")", g.dimension));
   cell_data.push_back(block(R"(<DataArray type="UInt8" Name="is_boundary" format="appended")", g.is_boundary));
   cell_data.push_back(block(R"(<DataArray type="UInt64" Name="domains" format="appended")", g.domains));
@@ -307,7 +310,7 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
     xml += std::string("      <") + name + ">\n";
     for (const Block& b : blocks) {
       xml += "        " + b.xml + " offset=\"" + std::to_string(offset) + "\"/>\n";
-      offset += 8 + b.bytes;
+      offset += 8 + b.bytes();
       order.push_back(&b);
     }
     xml += std::string("      </") + name + ">\n";
@@ -319,8 +322,11 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
   xml += "    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n_";
   os.write(xml.data(), static_cast<std::streamsize>(xml.size()));
   for (const Block* b : order) {
-    os.write(reinterpret_cast<const char*>(&b->bytes), 8);
-    if (b->bytes) os.write(static_cast<const char*>(b->data), static_cast<std::streamsize>(b->bytes));
+    const std::uint64_t bytes = b->bytes();
+    os.write(reinterpret_cast<const char*>(&bytes), 8);
+    for (const std::span<const std::byte> part : b->parts)
+      if (!part.empty())
+        os.write(reinterpret_cast<const char*>(part.data()), static_cast<std::streamsize>(part.size()));
   }
   const std::string tail = "\n  </AppendedData>\n</VTKFile>\n";
   os.write(tail.data(), static_cast<std::streamsize>(tail.size()));

@@ -228,6 +228,15 @@ class PackedKeyIndex {
   static std::uint64_t repeat_entry(const std::uint32_t* key, int words, std::uint32_t id) {
     return hash_words(key, words) >> 32 << 32 | id;
   }
+  /// n ids whose keys are not kept (words() = 0): size() counts them; there is no key to read and
+  /// no look-up. (A complex handed to a mesh writer: the writers read its levels' sizes, never keys.)
+  static PackedKeyIndex without_keys(std::uint32_t n) {
+    if (n > kMaxEntries) throw InputError("more than 2^31 - 1 entries in one index");
+    PackedKeyIndex index(0);
+    index.release_index();
+    index.size_ = n;
+    return index;
+  }
   /// Builds the hash table again after release_index().
   void reindex() {
     if (indexed()) return;
