@@ -253,8 +253,8 @@ void run(TraceCliOptions o) {
       mo.complex_tracer = distributed_complex_tracer(
           *comm,
           [&](CellComplexPart& part) -> PartCounts {
+            // (the part keeps only what the topology reads from here on)
             const CellClosure closure = closure_for_writing(part, *comm);
-            release_all_but_incidences(part);  // (before the piece's grid: the topology needs no more)
             const WrittenCounts n =
                 write_vtu_piece_file(output, comm->rank(), closure, part.interior_sizes[0], piece_options);
             return {n.points, n.cells, n.skipped};
