@@ -383,49 +383,48 @@ LevelView view_of(const CellLevel& l, const std::vector<std::uint32_t>& ids, con
 }
 
 // The level of n cells from the views of every part, each cell at its global id; with `rows`
-// (level 0) the vertex coordinates too. Throws InputError unless every cell is in one part.
+// (level 0) the vertex coordinates too. Throws InputError unless every cell is in one part. Each
+// cell's arrays go where its id says (keys, facet counts, rows; then the facet lists at their
+// offsets), with no hash table.
 CellLevel assemble_level(const std::vector<LevelView>& views, std::uint64_t n, int d, PointArray* rows) {
   if (n >= PackedKeyIndex::kAbsent) throw InputError("too many cells in a level");
   // (checked before anything of size n is allocated: n may come from a file)
-  std::uint64_t given = 0;
-  for (const LevelView& v : views) given += v.n;
-  if (given != n) throw InputError("the parts of the cell complex do not number its cells once each");
-  std::vector<std::uint64_t> where(n, ~std::uint64_t{0});  // per global id: part << 32 | index there
-  std::uint64_t entries = 0;
+  std::uint64_t given = 0, entries = 0;
   bool boundary_facets = false;
-  for (std::size_t p = 0; p < views.size(); ++p) {
-    const LevelView& v = views[p];
-    for (std::uint32_t c = 0; c < v.n; ++c) {
-      if (v.ids[c] >= n || where[v.ids[c]] != ~std::uint64_t{0})
-        throw InputError("the parts of the cell complex do not number its cells once each");
-      where[v.ids[c]] = std::uint64_t{p} << 32 | c;
-    }
-    entries += v.facet_entries;
+  for (const LevelView& v : views) {
+    given += v.n, entries += v.facet_entries;
     boundary_facets |= v.boundary_facet != nullptr;
   }
-  const int words = packed_words(d);
+  const char* const not_once = "the parts of the cell complex do not number its cells once each";
+  if (given != n) throw InputError(not_once);
+  if (entries >= (std::uint64_t{1} << 32)) throw InputError("too many facets in a level");
+  const std::size_t words = static_cast<std::size_t>(packed_words(d));
+  // n ids, none out of range nor twice: each of the n cells placed once.
+  std::vector<bool> placed(n, false);
+  UninitializedHugeVector<std::uint32_t> keys(n * words);  // (all written below)
   CellLevel level;
-  level.simplices = PackedKeyIndex(words);
-  level.simplices.reserve(n);
   level.facet_offsets.assign(n + 1, 0);
-  level.facet_ids.reserve(entries);
-  if (boundary_facets) level.boundary_facet.resize(n);
-  if (rows) rows->reserve(n * d);
-  for (std::uint64_t g = 0; g < n; ++g) {
-    if (where[g] == ~std::uint64_t{0}) throw InputError("a cell of the complex is in no part");
-    const LevelView& v = views[where[g] >> 32];
-    const auto c = static_cast<std::uint32_t>(where[g]);
-    if (!level.simplices.insert(v.keys + std::size_t{c} * words).second)
-      throw InputError("a simplex appears twice in a level of the cell complex");
-    if (v.offsets[c] > v.offsets[c + 1] || v.offsets[c + 1] > v.facet_entries)
-      throw InputError("a part of the cell complex has bad facet offsets");
-    level.facet_ids.insert(level.facet_ids.end(), v.facets + v.offsets[c], v.facets + v.offsets[c + 1]);
-    if (level.facet_ids.size() >= (std::uint64_t{1} << 32)) throw InputError("too many facets in a level");
-    level.facet_offsets[g + 1] = static_cast<std::uint32_t>(level.facet_ids.size());
-    if (boundary_facets) level.boundary_facet[g] = v.boundary_facet ? v.boundary_facet[c] : CellLevel::kNone;
-    if (rows) rows->insert(rows->end(), v.rows + std::size_t{c} * d, v.rows + (std::size_t{c} + 1) * d);
-  }
-  level.simplices.release_index();
+  if (boundary_facets) level.boundary_facet.assign(n, CellLevel::kNone);
+  if (rows) rows->resize(n * d);
+  for (const LevelView& v : views)
+    for (std::uint32_t c = 0; c < v.n; ++c) {
+      const std::uint32_t g = v.ids[c];
+      if (g >= n || placed[g]) throw InputError(not_once);
+      placed[g] = true;
+      if (v.offsets[c] > v.offsets[c + 1] || v.offsets[c + 1] > v.facet_entries)
+        throw InputError("a part of the cell complex has bad facet offsets");
+      std::copy_n(v.keys + c * words, words, keys.data() + g * words);
+      level.facet_offsets[g + 1] = v.offsets[c + 1] - v.offsets[c];
+      if (v.boundary_facet) level.boundary_facet[g] = v.boundary_facet[c];
+      if (rows) std::copy_n(v.rows + std::size_t{c} * d, d, rows->data() + std::size_t{g} * d);
+    }
+  for (std::uint64_t g = 0; g < n; ++g) level.facet_offsets[g + 1] += level.facet_offsets[g];
+  level.facet_ids.resize(entries);
+  for (const LevelView& v : views)
+    for (std::uint32_t c = 0; c < v.n; ++c)
+      std::copy(v.facets + v.offsets[c], v.facets + v.offsets[c + 1],
+                level.facet_ids.begin() + level.facet_offsets[v.ids[c]]);
+  level.simplices = PackedKeyIndex::from_keys(static_cast<int>(words), std::move(keys));
   return level;
 }
 

@@ -34,7 +34,8 @@ CellComplexPart build_cell_complex_distributed(TracePart&& trace, Communicator& 
 
 /// The whole complex from all the parts (in any order), each cell at its global id: the one
 /// build_cell_complex builds in one process. Throws InputError unless the parts cover every level
-/// exactly once and agree on its shape.
+/// exactly once and agree on its shape. The keys are not checked (distinct in parts from one run;
+/// check_native checks those from files, repeated ones included).
 CellComplex assemble_cell_complex(std::vector<CellComplexPart>&& parts);
 
 /// What a rank writes of its part in a mesh file: the cells it owns of the levels the file shows

@@ -42,97 +42,6 @@ nlohmann::json read_header(std::istream& in) {
   return nlohmann::json::parse(line, nullptr, false);
 }
 
-// One level of the whole complex from the pieces' levels, each cell at its global id: the level
-// assemble_cell_complex builds, by placing each cell's arrays where its id says, with no hash
-// table (check_native then checks the keys, repeated ones included, as it checks a file).
-CellLevel assemble_level(std::vector<CellComplexPart>& parts, int kind, std::size_t j, std::uint64_t n, int d,
-                         PointArray* rows, const std::string& name) {
-  const auto fail = [&] { throw InputError(name + ": the pieces do not number the cells of a level once each"); };
-  const auto level_of = [&](CellComplexPart& p) -> CellLevel& {
-    return (kind ? p.cells.boundary : p.cells.interior)[j];
-  };
-  const auto ids_of = [&](CellComplexPart& p) -> std::vector<std::uint32_t>& {
-    return (kind ? p.boundary_ids : p.interior_ids)[j];
-  };
-  if (n >= PackedKeyIndex::kAbsent) throw InputError(name + ": too many cells in a level");
-  // (checked before anything of size n is allocated: n comes from a file)
-  std::uint64_t given = 0, entries = 0;
-  bool boundary_facets = false;
-  for (CellComplexPart& p : parts) {
-    const CellLevel& l = level_of(p);
-    if (ids_of(p).size() != l.size() ||
-        (j == 0 && (kind ? p.cells.boundary_vertices : p.cells.vertices).size() != std::size_t{l.size()} * d))
-      fail();
-    given += l.size();
-    entries += l.facet_ids.size();
-    boundary_facets |= !l.boundary_facet.empty();
-  }
-  if (given != n) fail();
-  if (entries >= (std::uint64_t{1} << 32)) throw InputError(name + ": too many facets in a level");
-  const std::size_t words = static_cast<std::size_t>(packed_words(d));
-  // First the keys, the facet counts and the rows at their ids: n ids in range, none twice, cover the level.
-  std::vector<bool> placed(n, false);
-  UninitializedHugeVector<std::uint32_t> keys(n * words);
-  CellLevel level;
-  level.facet_offsets.assign(n + 1, 0);
-  if (boundary_facets) level.boundary_facet.assign(n, CellLevel::kNone);
-  if (rows) rows->resize(n * d);
-  for (CellComplexPart& p : parts) {
-    const CellLevel& l = level_of(p);
-    const std::vector<std::uint32_t>& ids = ids_of(p);
-    const PointArray& from_rows = kind ? p.cells.boundary_vertices : p.cells.vertices;
-    for (std::uint32_t c = 0; c < l.size(); ++c) {
-      const std::uint32_t g = ids[c];
-      if (g >= n || placed[g]) fail();
-      placed[g] = true;
-      std::copy_n(l.simplices.key(c), words, keys.data() + g * words);
-      level.facet_offsets[g + 1] = l.facet_offsets[c + 1] - l.facet_offsets[c];
-      if (!l.boundary_facet.empty()) level.boundary_facet[g] = l.boundary_facet[c];
-      if (rows) std::copy_n(from_rows.data() + std::size_t{c} * d, d, rows->data() + std::size_t{g} * d);
-    }
-  }
-  for (std::uint64_t g = 0; g < n; ++g) level.facet_offsets[g + 1] += level.facet_offsets[g];
-  // Then the facet lists at the offsets (read_native_piece checked each piece's offsets).
-  level.facet_ids.resize(entries);
-  for (CellComplexPart& p : parts) {
-    CellLevel& l = level_of(p);
-    const std::vector<std::uint32_t>& ids = ids_of(p);
-    for (std::uint32_t c = 0; c < l.size(); ++c)
-      std::copy(l.facet_ids.begin() + l.facet_offsets[c], l.facet_ids.begin() + l.facet_offsets[c + 1],
-                level.facet_ids.begin() + level.facet_offsets[ids[c]]);
-    l = CellLevel{};  // (memory)
-  }
-  level.simplices = PackedKeyIndex::from_keys(static_cast<int>(words), std::move(keys));
-  return level;
-}
-
-// The whole complex from its pieces (in any order), each cell at its global id: the file that one
-// process writes. Throws InputError unless the pieces agree on the shape and cover every level
-// exactly once.
-CellComplex assemble_pieces(std::vector<CellComplexPart>&& parts, const std::string& name) {
-  if (parts.empty()) throw InputError(name + ": a manifest without pieces");
-  const CellComplexPart& first = parts[0];
-  CellComplex cc;
-  const int d = first.cells.ambient_dimension;
-  cc.ambient_dimension = d;
-  cc.manifold_dimension = first.cells.manifold_dimension;
-  for (const CellComplexPart& p : parts)
-    if (p.cells.ambient_dimension != d || p.cells.manifold_dimension != cc.manifold_dimension ||
-        p.interior_sizes != first.interior_sizes || p.boundary_sizes != first.boundary_sizes ||
-        p.cells.interior.size() != first.interior_sizes.size() ||
-        p.cells.boundary.size() != first.boundary_sizes.size() || p.interior_ids.size() != p.cells.interior.size() ||
-        p.boundary_ids.size() != p.cells.boundary.size())
-      throw InputError(name + ": the pieces do not agree on the shape of the complex");
-  for (int kind = 0; kind < 2; ++kind) {
-    const std::vector<std::uint64_t> sizes = kind ? first.boundary_sizes : first.interior_sizes;
-    for (std::size_t j = 0; j < sizes.size(); ++j) {
-      PointArray* rows = j > 0 ? nullptr : kind ? &cc.boundary_vertices : &cc.vertices;
-      (kind ? cc.boundary : cc.interior).push_back(assemble_level(parts, kind, j, sizes[j], d, rows, name));
-    }
-  }
-  return cc;
-}
-
 }  // namespace
 
 std::string native_piece_path(const std::string& path, int rank) {
@@ -291,7 +200,11 @@ bool read_native_manifest(std::istream& in, const std::string& name, NativeFile&
   }
   // The checks of read_native, on the complex that one process would have written (in memory:
   // writing it out and reading it back cost a copy of the file and a second reading).
-  out.cells = assemble_pieces(std::move(parts), name);
+  try {
+    out.cells = assemble_cell_complex(std::move(parts));
+  } catch (const InputError& e) {
+    throw InputError(name + ": " + e.what());
+  }
   check_native(out.cells, name);
   out.info = std::move(info);
   return true;
