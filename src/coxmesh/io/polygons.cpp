@@ -3,11 +3,22 @@
 
 #include <algorithm>
 
-#include "coxmesh/util/sort_few.h"
-
 namespace coxmesh {
 
 namespace {
+
+// Sorts a cell's few corners (a few tens of numbers) by insertion, where std::sort's set-up costs
+// more than the sort; a long list by std::sort.
+template <class T>
+void sort_few(std::vector<T>& v) {
+  if (v.size() > 48) return std::sort(v.begin(), v.end());
+  for (std::size_t i = 1; i < v.size(); ++i) {
+    const T x = v[i];
+    std::size_t j = i;
+    for (; j > 0 && x < v[j - 1]; --j) v[j] = v[j - 1];
+    v[j] = x;
+  }
+}
 
 std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
   return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);

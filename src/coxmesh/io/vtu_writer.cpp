@@ -13,7 +13,6 @@
 #include "coxmesh/io/mesh_formats.h"
 #include "coxmesh/io/polygons.h"
 #include "coxmesh/io/simplices.h"
-#include "coxmesh/util/sort_few.h"
 
 namespace coxmesh {
 
