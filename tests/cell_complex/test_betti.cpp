@@ -193,8 +193,9 @@ TEST(Betti, RotationGroupIsTheRealProjectiveSpace) {  // SO(3) ≅ RP³: Z/2 Bet
   EXPECT_EQ(report.betti, (std::vector<std::size_t>{1, 1, 1, 1}));
 }
 
-// 3-manifolds, where only the 2-skeleton is reduced after coreductions: closed with cells left for
-// the final reduction (T³) or none (S³), two components, with boundary, and a truncated run.
+// Manifolds of dimension 3 and 4, where only the (m−1)-skeleton is reduced after coreductions:
+// closed with cells left for the final reduction (T³) or none (S³), two components, with boundary,
+// a closed component beside one with boundary, with corners, S⁴, and a truncated run.
 TEST(Betti, ThreeManifoldsAgreeWithTheReference) {
   struct Case {
     const char* name;
@@ -202,6 +203,7 @@ TEST(Betti, ThreeManifoldsAgreeWithTheReference) {
     Triangulation t;
     std::vector<std::vector<double>> seeds;
     std::vector<std::size_t> betti;
+    std::vector<FunctionPtr> domains = {};
   };
   const Case cases[] = {
       {"T3 in R6",
@@ -223,6 +225,20 @@ TEST(Betti, ThreeManifoldsAgreeWithTheReference) {
        Triangulation::coxeter(6).with_longest_edge(0.6),
        {{1, 0, 1, 0, 1, 0}},
        {1, 0, 0, 0}},
+      {"a 3-sphere beside one cut in two",
+       expression_function("(x^2+y^2+z^2+w^2-1)*((x-3)^2+y^2+z^2+w^2-1)", 4),
+       half_space_domain({1, 0.1, 0.05, 0.02}, 3.2),
+       Triangulation::coxeter(4).with_longest_edge(0.4),
+       {{1, 0, 0, 0}, {2, 0, 0, 0}},
+       {2, 0, 0, 1}},
+      {"S3 in R4 cut by three half-spaces (corners)",
+       sphere(3, 4, 1.0),
+       nullptr,
+       Triangulation::coxeter(4).with_longest_edge(0.3),
+       {{-0.5, -0.5, -0.5, 0.5}},
+       {1, 0, 0, 0},
+       {half_space_domain({1, 0, 0, 0}, 0), half_space_domain({0, 1, 0, 0}, 0), half_space_domain({0, 0, 1, 0}, 0)}},
+      {"S4 in R5", sphere(4, 5, 1.0), nullptr, Triangulation::coxeter(5).with_longest_edge(0.7), {}, {1, 0, 0, 0, 1}},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
@@ -231,7 +247,7 @@ TEST(Betti, ThreeManifoldsAgreeWithTheReference) {
     const MeshReport mesh = mesh_manifold(
         c.t,
         [&] {
-          return ManifoldFunctions{c.f, c.domain};
+          return ManifoldFunctions{c.f, c.domain, c.domains};
         },
         options);
     const CellComplex& cc = mesh.cells;
