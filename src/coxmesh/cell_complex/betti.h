@@ -27,4 +27,8 @@ std::vector<std::size_t> betti_numbers_by_reduction(const CellComplex& cc, std::
 /// cells. O(incidences) before that reduction.
 std::vector<std::size_t> betti_numbers(const CellComplex& cc, bool manifold);
 
+/// β_{m−1} of a manifold (m ≥ 1, m + 1 numbers in `betti`) from its Euler characteristic and the
+/// other Betti numbers, Σ (−1)^j β_j = χ: replaces betti[m − 1].
+void betti_below_top_from_euler(std::vector<std::size_t>& betti, long long euler);
+
 }  // namespace coxmesh

@@ -290,14 +290,19 @@ std::vector<std::size_t> betti_numbers(const CellComplex& cc, bool manifold) {
   betti[0] += components_count;
   if (manifold) {
     betti[m] = closed_top_pieces(cc).size();
-    long long rest = euler;  // (−1)^(m−1) β_{m−1} = χ − the other terms
-    for (int j = 0; j <= m; ++j)
-      if (j != m - 1) rest -= (j % 2 ? -1LL : 1LL) * static_cast<long long>(betti[j]);
-    const long long b = (m - 1) % 2 ? -rest : rest;
-    COXMESH_ASSERT(b >= 0);
-    betti[m - 1] = static_cast<std::size_t>(b);
+    betti_below_top_from_euler(betti, euler);
   }
   return betti;
+}
+
+void betti_below_top_from_euler(std::vector<std::size_t>& betti, long long euler) {
+  const int m = static_cast<int>(betti.size()) - 1;
+  long long rest = euler;  // (−1)^(m−1) β_{m−1} = χ − the other terms
+  for (int j = 0; j <= m; ++j)
+    if (j != m - 1) rest -= (j % 2 ? -1LL : 1LL) * static_cast<long long>(betti[j]);
+  const long long b = (m - 1) % 2 ? -rest : rest;
+  COXMESH_ASSERT(b >= 0);
+  betti[m - 1] = static_cast<std::size_t>(b);
 }
 
 }  // namespace coxmesh

@@ -15,6 +15,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "coxmesh/cell_complex/betti.h"
 #include "coxmesh/cell_complex/boundary_reduction.h"
 #include "coxmesh/errors.h"
 #include "coxmesh/tracing/trace_distributed.h"
@@ -221,13 +222,19 @@ void sort_unique(std::vector<std::uint32_t>& v) {
   v.erase(std::unique(v.begin(), v.end()), v.end());
 }
 
-// Collapses and coreductions (betti_shrink.cpp) over cells 0..n−1 in dimension order, whose facet
-// lists hold local indices or, with kRemote, cells of another rank, which count as never removed.
+// Collapses and coreductions (betti_shrink.cpp) over cells 0..n−1 in dimension order (n + 1
+// offsets), whose facet lists hold local indices or, with kRemote, cells of another rank, which
+// count as never removed. Cells from `cut_first` on are the top dimension of a skeleton whose own
+// homology in that dimension is not wanted: one that is a cycle is removed alone.
 class PairReducer {
  public:
-  PairReducer(const std::vector<std::uint32_t>& offsets, const std::vector<std::uint32_t>& facets,
-              std::span<const std::uint32_t> remote_cofaces)
-      : offsets_(offsets), facets_(facets), cell_(offsets.size() - 1), pinned_(offsets.size() - 1, 0) {
+  PairReducer(std::span<const std::uint32_t> offsets, const std::vector<std::uint32_t>& facets,
+              std::span<const std::uint32_t> remote_cofaces, std::uint32_t cut_first)
+      : offsets_(offsets),
+        facets_(facets),
+        cut_first_(cut_first),
+        cell_(offsets.size() - 1),
+        pinned_(offsets.size() - 1, 0) {
     const std::uint32_t n = static_cast<std::uint32_t>(cell_.size());
     for (std::uint32_t a = 0; a < n; ++a) {
       if (!remote_cofaces.empty() && remote_cofaces[a] > 0) pinned_[a] |= kPinnedUp;
@@ -254,7 +261,7 @@ class PairReducer {
       for (std::uint32_t i = offsets_[a]; i < offsets_[a + 1]; ++i)
         if (!(facets_[i] & kRemote)) coface_ids_[--coface_start_[facets_[i]]] = a;
     for (std::uint32_t a = 0; a < n; ++a)
-      if (free_down(a) || free_up(a)) pending_.push_back(a);
+      if (free_down(a) || free_up(a) || cut_cycle(a)) pending_.push_back(a);
   }
 
   // Removes a vertex whose class is accounted for elsewhere (one per component).
@@ -274,6 +281,8 @@ class PairReducer {
       } else if (free_up(a)) {
         const std::uint32_t b = cell_[a].xup;
         remove(a), remove(b);
+      } else if (cut_cycle(a)) {  // (as betti_shrink.cpp: it changes only the skeleton's own H_top)
+        remove(a);
       }
     }
     pending_ = {};
@@ -289,6 +298,7 @@ class PairReducer {
 
   bool free_down(std::uint32_t a) const { return cell_[a].down == 1 && !(pinned_[a] & kPinnedDown); }
   bool free_up(std::uint32_t a) const { return cell_[a].up == 1 && !(pinned_[a] & kPinnedUp); }
+  bool cut_cycle(std::uint32_t a) const { return a >= cut_first_ && cell_[a].down == 0 && !(pinned_[a] & kPinnedDown); }
 
   void remove(std::uint32_t x) {
     cell_[x].up = kRemoved, ++removed_count_;
@@ -302,15 +312,16 @@ class PairReducer {
       const std::uint32_t y = coface_ids_[i];
       if (removed(y)) continue;
       cell_[y].xdown ^= x;
-      if (--cell_[y].down == 1 && free_down(y)) pending_.push_back(y);
+      if (--cell_[y].down <= 1 && (free_down(y) || cut_cycle(y))) pending_.push_back(y);
     }
   }
 
   struct Counts {
     std::uint32_t down = 0, up = 0, xdown = 0, xup = 0;  // remaining local facets and cofaces
   };
-  const std::vector<std::uint32_t>& offsets_;
+  std::span<const std::uint32_t> offsets_;
   const std::vector<std::uint32_t>& facets_;
+  std::uint32_t cut_first_;
   std::vector<Counts> cell_;
   std::vector<std::uint8_t> pinned_;
   std::vector<std::uint32_t> coface_start_, coface_ids_, pending_;
@@ -340,8 +351,10 @@ std::vector<std::size_t> betti_by_reduction(const std::vector<std::uint32_t>& of
 }
 
 // Rank 0: the Betti numbers of what the ranks left (records: global id, facet count, facets by
-// global id, of which those not left are dropped).
-std::vector<std::size_t> finish_betti(const Bytes& records, const Layout& layout, DistributedTopologyStats* stats) {
+// global id, of which those not left are dropped). `skeleton`: the ranks left out the top cells,
+// and β_(m−1) is not wanted.
+std::vector<std::size_t> finish_betti(const Bytes& records, const Layout& layout, bool skeleton,
+                                      DistributedTopologyStats* stats) {
   std::vector<std::uint32_t> words(records.size() / sizeof(std::uint32_t));
   if (!words.empty()) std::memcpy(words.data(), records.data(), records.size());
   std::vector<std::pair<std::uint32_t, std::uint32_t>> cells;  // (global id, position of its record)
@@ -364,13 +377,137 @@ std::vector<std::size_t> finish_betti(const Bytes& records, const Layout& layout
   cells = {};
   std::vector<std::uint8_t> keep(dim.size(), 1);
   {
-    PairReducer reducer(offsets, facets, {});
+    const auto cut = skeleton ? std::lower_bound(dim.begin(), dim.end(), layout.m - 1) : dim.end();
+    PairReducer reducer(offsets, facets, {}, static_cast<std::uint32_t>(cut - dim.begin()));
     reducer.reduce();
     for (std::uint32_t a = 0; a < keep.size(); ++a) keep[a] = !reducer.removed(a);
     if (stats) stats->cells_left = reducer.remaining();
   }
   std::vector<std::size_t> betti = betti_by_reduction(offsets, facets, dim, layout.m, keep);
   return betti;
+}
+
+// Labels of classes of cells: (rank << 32) | the class's smallest cell in its range.
+using LabelPairs = std::vector<std::pair<std::uint64_t, std::uint64_t>>;
+
+// The components of a graph split between ranks: each rank has grouped its cells into `classes`
+// labelled classes and knows `pairs` of labels of one component (where its classes meet another
+// rank's); rank 0 joins the pairs. Also how many of the components hold one of the `marked` labels.
+// On every rank.
+struct Glued {
+  std::uint64_t components = 0, marked = 0;
+};
+Glued glue_classes(Communicator& comm, std::uint64_t classes, LabelPairs& pairs,
+                   const std::vector<std::uint64_t>& marked) {
+  std::sort(pairs.begin(), pairs.end());  // (a range meets another along many cells of one class)
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  Bytes mine;
+  const std::uint64_t head[2] = {classes, pairs.size()};
+  put(mine, head, 2);
+  for (const auto& [a, b] : pairs) put(mine, &a, 1), put(mine, &b, 1);
+  put(mine, marked.data(), marked.size());
+  pairs = {};
+  std::vector<std::size_t> counts;
+  const Bytes all = comm.gather_to_root(mine, counts);
+  mine = {};
+  Glued glued;
+  std::vector<std::byte> result(sizeof glued);
+  agreed(comm, [&] {
+    if (comm.rank() != 0) return;
+    std::vector<std::uint64_t> words(all.size() / sizeof(std::uint64_t));
+    if (!words.empty()) std::memcpy(words.data(), all.data(), all.size());
+    std::unordered_map<std::uint64_t, std::uint32_t> index;
+    const auto node = [&](std::uint64_t label) {
+      return index.try_emplace(label, static_cast<std::uint32_t>(index.size())).first->second;
+    };
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+    std::vector<std::uint32_t> marks;
+    std::size_t at = 0;
+    for (const std::size_t count : counts) {
+      const std::size_t end = at + count / sizeof(std::uint64_t), pairs_end = at + 2 + 2 * words[at + 1];
+      glued.components += words[at];
+      for (at += 2; at < pairs_end; at += 2) edges.emplace_back(node(words[at]), node(words[at + 1]));
+      for (; at < end; ++at) marks.push_back(node(words[at]));
+    }
+    UnionFind components(index.size());
+    for (const auto& [a, b] : edges) glued.components -= components.unite(a, b);
+    for (std::uint32_t& x : marks) x = components.find(x);
+    sort_unique(marks);
+    glued.marked = marks.size();
+    std::memcpy(result.data(), &glued, sizeof glued);
+  });
+  comm.broadcast(result);
+  std::memcpy(&glued, result.data(), sizeof glued);
+  return glued;
+}
+
+// β_m of a manifold, as betti_shrink.cpp counts it: the groups of top cells joined across interior
+// (m−1)-cells (two each) that have no boundary facet. Each rank joins the top cells of its range
+// across the facets it holds; a facet in another range gets the labels of the classes of its top
+// cells from their ranks (one exchange), and its rank pairs the two. Collective.
+std::uint64_t closed_top_pieces(const Ranges& ranges, const Layout& layout, Communicator& comm) {
+  const int top = 2 * layout.m, ridge = top - 2;  // (the levels of the top cells and of their interior facets)
+  const std::uint64_t first_top = layout.local_start[top], first_ridge = layout.local_start[ridge];
+  const std::uint32_t tops = static_cast<std::uint32_t>(layout.local_start[top + 1] - first_top);
+  UnionFind pieces(tops);
+  std::vector<std::uint32_t> first(layout.local_start[ridge + 1] - first_ridge, CellLevel::kNone);
+  std::vector<std::uint8_t> open(tops, 0);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> elsewhere;  // (facet's global id, top cell)
+  for (std::uint32_t c = 0; c < tops; ++c)
+    for (std::uint32_t g : ranges.of(first_top + c)) {
+      if (layout.level_of(g, ridge) != ridge) {  // (a boundary facet)
+        open[c] = 1;
+        continue;
+      }
+      const std::uint32_t f = layout.local_in(g, ridge);
+      if (f == kRemote)
+        elsewhere.emplace_back(g, c);
+      else if (std::uint32_t& other = first[f - first_ridge]; other == CellLevel::kNone)
+        other = c;
+      else
+        pieces.unite(other, c);
+    }
+  const auto label = [&](std::uint32_t c) { return std::uint64_t(layout.rank) << 32 | pieces.find(c); };
+  std::uint64_t classes = 0;
+  std::vector<std::uint64_t> open_labels;
+  for (std::uint32_t c = 0; c < tops; ++c) {  // (a cell's flag to its class's root, its smallest cell)
+    const std::uint32_t root = pieces.find(c);
+    classes += root == c;
+    if (open[c] && root != c) open[root] = 1;
+  }
+  for (std::uint32_t c = 0; c < tops; ++c)
+    if (open[c] && pieces.find(c) == c) open_labels.push_back(label(c));
+  std::vector<Bytes> outgoing(comm.size());
+  for (const auto& [g, c] : elsewhere) {
+    const std::uint64_t record[2] = {g, label(c)};
+    put(outgoing[layout.owner(g)], record, 2);
+  }
+  elsewhere = {};
+  std::vector<std::size_t> counts;
+  const Bytes in = comm.exchange(outgoing, counts);
+  outgoing = {};
+  LabelPairs pairs;
+  agreed(comm, [&] {
+    std::vector<std::pair<std::uint32_t, std::uint64_t>> arrived;  // (facet here, label of a top cell)
+    const std::byte* at = in.data();
+    for (std::size_t k = 0; k < in.size() / (2 * sizeof(std::uint64_t)); ++k) {
+      std::uint64_t record[2];
+      take(at, record, 2);
+      const std::uint32_t f = layout.local_in(static_cast<std::uint32_t>(record[0]), ridge);
+      if (f == kRemote) throw std::logic_error("a top cell's label sent to the rank that does not hold its facet");
+      arrived.emplace_back(static_cast<std::uint32_t>(f - first_ridge), record[1]);
+    }
+    std::sort(arrived.begin(), arrived.end());
+    for (std::size_t k = 0; k < arrived.size(); ++k) {  // (the manifold: two top cells per facet)
+      const auto& [f, l] = arrived[k];
+      if (first[f] != CellLevel::kNone)
+        pairs.emplace_back(label(first[f]), l);
+      else if (k + 1 < arrived.size() && arrived[k + 1].first == f)
+        pairs.emplace_back(l, arrived[k + 1].second), ++k;
+    }
+  });
+  const Glued glued = glue_classes(comm, classes, pairs, open_labels);
+  return glued.components - glued.marked;
 }
 
 }  // namespace
@@ -577,51 +714,41 @@ TopologyReport analyze_topology_distributed(CellComplexPart&& part, Communicator
       const std::uint64_t l = label(i);
       put(out, &l, 1);
     });
-    Bytes glue;  // classes here, then pairs of labels of one class
-    put(glue, &classes, 1);
+    LabelPairs pairs;
     {
       const std::byte* at = answers.data();
       for (const auto& from : asked)
         for (std::uint32_t g : from) {
-          std::uint64_t pair[2];
-          pair[0] = label(node(g));
-          take(at, &pair[1], 1);
-          put(glue, pair, 2);
+          std::uint64_t theirs;
+          take(at, &theirs, 1);
+          pairs.emplace_back(label(node(g)), theirs);
         }
     }
-    std::vector<std::size_t> counts;
-    const Bytes all = comm.gather_to_root(glue, counts);
-    glue = {};
-    std::vector<std::byte> total(sizeof(std::uint64_t));
-    agreed(comm, [&] {
-      if (comm.rank() != 0) return;
-      std::unordered_map<std::uint64_t, std::uint32_t> index;
-      std::vector<std::uint64_t> words(all.size() / sizeof(std::uint64_t));
-      if (!words.empty()) std::memcpy(words.data(), all.data(), all.size());
-      std::uint64_t sum = 0;
-      std::size_t at = 0;
-      std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
-      for (const std::size_t count : counts) {
-        const std::size_t end = at + count / sizeof(std::uint64_t);
-        sum += words[at++];
-        for (; at < end; at += 2) {
-          const auto a = index.try_emplace(words[at], static_cast<std::uint32_t>(index.size())).first->second;
-          const auto b = index.try_emplace(words[at + 1], static_cast<std::uint32_t>(index.size())).first->second;
-          edges.emplace_back(a, b);
-        }
-      }
-      UnionFind glued(index.size());
-      for (const auto& [a, b] : edges) sum -= glued.unite(a, b);
-      std::memcpy(total.data(), &sum, sizeof sum);
-    });
-    comm.broadcast(total);
-    std::memcpy(&beta0, total.data(), sizeof beta0);
+    beta0 = glue_classes(comm, classes, pairs, {}).components;
   }
   std::uint64_t removed_vertices = first_vertices.size();
   comm.sum(&removed_vertices, 1);
 
+  // A manifold's top cells are not reduced, as in one process (betti_shrink.cpp): their closed
+  // pieces give β_m, the Euler characteristic β_(m−1), and the (m−1)-skeleton the rest, none of
+  // it for m ≤ 2.
+  const bool skeleton = r.is_manifold && m >= 1;
+  const std::uint64_t closed_pieces = skeleton ? closed_top_pieces(ranges, layout, comm) : 0;
+  const auto set_top_two = [&](std::vector<std::size_t>& betti) {  // (β_m, β_(m−1))
+    betti[m] = closed_pieces;
+    betti_below_top_from_euler(betti, r.euler_characteristic);
+  };
+  if (skeleton && m <= 2) {
+    r.betti.assign(m + 1, 0);
+    r.betti[0] = beta0;
+    set_top_two(r.betti);
+    return r;
+  }
+
   // The reductions of each range, then rank 0's of what is left.
-  for (int l = 2; l < layout.levels(); ++l)
+  const int reduced_levels = skeleton ? 2 * m : layout.levels();
+  const std::uint32_t reduced = static_cast<std::uint32_t>(level_begin(reduced_levels));
+  for (int l = 2; l < reduced_levels; ++l)
     for (std::uint64_t i = layout.local_start[l]; i < layout.local_start[l + 1]; ++i)
       for (std::uint32_t k = ranges.offsets[i]; k < ranges.offsets[i + 1]; ++k) {
         std::uint32_t& g = ranges.facets[k];
@@ -633,12 +760,16 @@ TopologyReport analyze_topology_distributed(CellComplexPart&& part, Communicator
   Bytes left;
   std::uint64_t left_cells = 0;
   agreed(comm, [&] {
-    PairReducer reducer(ranges.offsets, ranges.facets, remote_cofaces);
+    // (the cofaces of the skeleton's (m−1)-cells, on any rank, are top cells, left out)
+    const std::uint32_t cut_first = skeleton ? static_cast<std::uint32_t>(level_begin(2 * m - 2)) : reduced;
+    std::fill(remote_cofaces.begin() + cut_first, remote_cofaces.begin() + reduced, 0);
+    PairReducer reducer(std::span(ranges.offsets).first(reduced + 1), ranges.facets,
+                        std::span(remote_cofaces).first(reduced), cut_first);
     remote_cofaces = {};
     for (std::uint32_t v : first_vertices) reducer.remove_vertex(v);
     reducer.reduce();
     std::vector<std::uint32_t> record;
-    for (std::uint32_t i = 0; i < n; ++i) {
+    for (std::uint32_t i = 0; i < reduced; ++i) {
       if (reducer.removed(i)) continue;
       ++left_cells;
       record.assign({layout.global(i), 0});
@@ -660,7 +791,7 @@ TopologyReport analyze_topology_distributed(CellComplexPart&& part, Communicator
   std::vector<std::byte> result;
   agreed(comm, [&] {
     if (comm.rank() != 0) return;
-    std::vector<std::size_t> betti = finish_betti(all, layout, stats);
+    std::vector<std::size_t> betti = finish_betti(all, layout, skeleton, stats);
     if (m == 0) {
       betti = {beta0};
     } else {
@@ -670,6 +801,7 @@ TopologyReport analyze_topology_distributed(CellComplexPart&& part, Communicator
       COXMESH_ASSERT(b1 >= 0);
       betti[0] = beta0, betti[1] = static_cast<std::size_t>(b1);
     }
+    if (skeleton) set_top_two(betti);
     for (std::size_t b : betti) {
       const std::uint64_t x = b;
       put(result, &x, 1);

@@ -29,7 +29,9 @@ struct DistributedTopologyStats {
 /// then collapses and coreduces pairs of its cells, counting the cells of other ranges as never
 /// removed; what is left goes to rank 0, which reduces it further and computes its homology
 /// (betti.h's steps); β_0, and the correction of β_1 for the vertices removed, come from the
-/// components of each range glued across ranges. The result is on every rank. Collective.
+/// components of each range glued across ranges. For a manifold, as betti_numbers does, the top
+/// cells are not reduced: β_m counts their closed pieces (glued across ranges as the components
+/// are), β_(m−1) comes from χ. The result is on every rank. Collective.
 TopologyReport analyze_topology_distributed(CellComplexPart&& part, Communicator& comm,
                                             DistributedTopologyStats* stats = nullptr);
 
