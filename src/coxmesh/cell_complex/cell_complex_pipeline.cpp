@@ -80,8 +80,8 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
   CellLevel level;
   level.simplices = PackedKeyIndex(words);
   level.simplices.reserve_keys(prev.size());  // (its table is sized below, from batch 0: its pages are written at once)
-  IndexArray incidences;           // the cells found from each cell of prev, in discovery order
-  IndexArray counts(prev.size());  // how many (its cofacets), per cell of prev
+  IndexArray incidences;                      // the cells found from each cell of prev, in discovery order
+  IndexArray counts(prev.size());             // how many (its cofacets), per cell of prev
   std::vector<Chunk> buffers[3];
   for (auto& b : buffers) b.resize(chunks_per_batch);
   const std::int64_t batches = (prev.size() + batch_cells - 1) / batch_cells;
