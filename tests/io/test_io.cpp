@@ -754,6 +754,25 @@ TEST(Projection, SpecsAndErrors) {
   fs::remove_all(dir);
 }
 
+// The PLY writer reads the vertices where they are only when projecting them would give the same
+// bytes: the identity of R³, no boundary vertices, no −0 (which the projection writes as +0).
+TEST(Projection, VerticesServeAsTheirOwnProjectionOnlyWhenUnchanged) {
+  CellComplex cc;
+  cc.ambient_dimension = 3;
+  cc.vertices = {1.5, 0.0, -2.0, 3.0, -4.0, 0.25};
+  const Projection identity = make_projection("", 3, {});
+  const PointArray copy = project_vertices(identity, cc);
+  ASSERT_EQ(vertices_as_projected(identity, cc), cc.vertices.data());
+  EXPECT_EQ(std::memcmp(copy.data(), cc.vertices.data(), copy.size() * sizeof(double)), 0);
+  EXPECT_EQ(vertices_as_projected(make_projection("1,3,2", 3, {}), cc), nullptr);
+  cc.vertices[1] = -0.0;
+  EXPECT_FALSE(std::signbit(project_vertices(identity, cc)[1]));
+  EXPECT_EQ(vertices_as_projected(identity, cc), nullptr);
+  cc.vertices[1] = 0.0;
+  cc.boundary_vertices = {1, 2, 3};
+  EXPECT_EQ(vertices_as_projected(identity, cc), nullptr);
+}
+
 TEST(AtomicFile, ErrorsLeaveThePreviousFileUntouched) {
   const fs::path dir = temp_dir();
   const fs::path target = dir / "out.txt";

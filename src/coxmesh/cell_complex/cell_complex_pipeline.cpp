@@ -13,18 +13,23 @@ namespace coxmesh::cells {
 
 namespace {
 
-// Facet lists from the incidences (cell << 32) | facet, in discovery order: a counting sort by
-// cell keeps each cell's facets in increasing order. Worker p sorts the p-th range of cells: it
+// Facet lists from the incidences: the cells found from each facet, facet after facet (`counts`
+// of them per facet), in discovery order; a counting sort by cell keeps each cell's facets in
+// increasing order. (The facet is where a cell id sits, not a second word beside it: half the
+// bytes written and read.) Worker p sorts the p-th range of cells: it
 // reads every incidence and skips the other ranges', so no counter is written by two workers. The
 // arrays are not zeroed beforehand: each worker writes its own range first (and takes its page
 // faults), and the prefix sums are per range, then shifted by the ranges before.
-void set_facets(CellLevel& level, std::span<const std::uint64_t> incidences, WorkerPool& pool) {
+void set_facets(CellLevel& level, std::span<const std::uint32_t> incidences, std::span<const std::uint32_t> counts,
+                WorkerPool& pool) {
   const std::uint64_t n = level.size(), parts = static_cast<std::uint64_t>(pool.size());
   const auto lo = [&](std::uint64_t p) { return n * p / parts; };
   const auto for_own_incidences = [&](std::uint64_t p, auto&& f) {
     const std::uint64_t first = lo(p), width = lo(p + 1) - first;
-    for (std::uint64_t e : incidences)
-      if ((e >> 32) - first < width) f(e >> 32, static_cast<std::uint32_t>(e));
+    std::size_t r = 0;
+    for (std::uint32_t facet = 0; facet < counts.size(); ++facet)
+      for (const std::size_t end = r + counts[facet]; r < end; ++r)
+        if (incidences[r] - first < width) f(std::uint64_t{incidences[r]}, facet);
   };
   level.facet_offsets.resize(n + 1);
   level.facet_offsets[0] = 0;
@@ -68,14 +73,15 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
   // Level j's simplices are the cofacets of level j − 1's (l = k + j, those have dimension l − 1).
   COXMESH_ASSERT(prev.size() == 0 || prev.simplices.simplex(0, d).k + 1 == l);
   struct alignas(64) Chunk {  // (padded: neighbouring chunks are filled by different workers)
-    std::vector<std::uint32_t> keys, facets, ids;
+    std::vector<std::uint32_t> keys, ids;
     std::vector<std::uint64_t> hashes;
     std::size_t offset = 0;  // of its incidences
   };
   CellLevel level;
   level.simplices = PackedKeyIndex(words);
   level.simplices.reserve_keys(prev.size());  // (its table is sized below, from batch 0: its pages are written at once)
-  UninitializedHugeVector<std::uint64_t> incidences;  // (cell << 32) | facet, in discovery order
+  IndexArray incidences;                      // the cells found from each cell of prev, in discovery order
+  IndexArray counts(prev.size());             // how many (its cofacets), per cell of prev
   std::vector<Chunk> buffers[3];
   for (auto& b : buffers) b.resize(chunks_per_batch);
   const std::int64_t batches = (prev.size() + batch_cells - 1) / batch_cells;
@@ -86,13 +92,14 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
   };
   const auto enumerate = [&](std::int64_t batch, std::size_t t) {
     Chunk& out = buffers[batch % 3][t];
-    out.keys.clear(), out.facets.clear(), out.hashes.clear();
+    out.keys.clear(), out.hashes.clear();
     const std::uint32_t a = static_cast<std::uint32_t>(batch * batch_cells + t * kChunk);
     const std::uint32_t b = std::min(prev.size(), a + kChunk);
     for (std::uint32_t c = a; c < b; ++c) {  // (straight from the packed keys, into arrays grown once per cell)
       const std::uint32_t* tau = prev.simplices.key(c);
       const std::size_t first = out.hashes.size(), count = packed_cofacet_count(tau, d);
-      out.keys.resize((first + count) * words), out.hashes.resize(first + count), out.facets.resize(first + count, c);
+      out.keys.resize((first + count) * words), out.hashes.resize(first + count);
+      counts[c] = static_cast<std::uint32_t>(count);
       std::uint32_t* keys = out.keys.data() + first * words;
       std::uint64_t* hashes = out.hashes.data() + first;
       for_each_packed_cofacet(tau, d, [&](const std::uint32_t* nu) {
@@ -113,9 +120,7 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
   };
   const auto write_out = [&](std::int64_t batch, std::size_t t) {
     const Chunk& in = buffers[batch % 3][t];
-    for (std::size_t r = 0; r < in.ids.size(); ++r)
-      incidences[in.offset + r] =
-          (static_cast<std::uint64_t>(in.ids[r] & ~PackedKeyIndex::kNewBit) << 32) | in.facets[r];
+    for (std::size_t r = 0; r < in.ids.size(); ++r) incidences[in.offset + r] = in.ids[r] & ~PackedKeyIndex::kNewBit;
   };
   for (std::int64_t round = 0; round <= batches + 1; ++round) {
     const std::int64_t numbered = round - 1, written = round - 2;
@@ -152,7 +157,7 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
         t < n_enumerate ? enumerate(round, t) : write_out(written, t - n_enumerate);
     });
   }
-  set_facets(level, incidences, pool);
+  set_facets(level, incidences, counts, pool);
   return level;
 }
 

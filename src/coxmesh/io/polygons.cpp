@@ -295,13 +295,15 @@ Ragged polyhedron_faces(const CellComplex& cc, CellKind kind, const Ragged& poly
 void orient_polygons(Ragged& polygons, const Ragged& edges, std::uint32_t edge_count, std::uint32_t first,
                      std::uint32_t last, const double* points3) {
   const std::uint32_t n = std::min(last, polygons.size());
-  // Edge → the (at most two) polygons using it and the direction they traverse it.
+  if (n > 0x7FFFFFFFu) throw InputError("more than 2^31 - 1 polygons to orient");
+  // Edge → the (at most two) polygons using it and the direction they traverse it, as p << 1 |
+  // forward (8 bytes an edge: the breadth-first walk reads them at random). kNone: no such use;
+  // kMany in the second: more than two (polygon ids are below 2^31, so neither is a use).
+  constexpr std::uint32_t kNone = 0xFFFFFFFFu, kMany = 0xFFFFFFFEu;
   struct Uses {
-    std::uint32_t poly[2];
-    bool forward[2];
-    std::uint8_t count = 0;
+    std::uint32_t side[2];
   };
-  std::vector<Uses> uses(edge_count);
+  std::vector<Uses> uses(edge_count, Uses{{kNone, kNone}});
   // The passes below jump around memory (the breadth-first order is spatial, the arrays are in
   // discovery order): what a polygon a few steps ahead will read is prefetched.
   constexpr std::size_t kAhead = 8;
@@ -315,11 +317,11 @@ void orient_polygons(Ragged& polygons, const Ragged& edges, std::uint32_t edge_c
     for (std::size_t i = 0; i < cycle.size(); ++i) {
       const std::uint32_t a = cycle[i], b = cycle[i + 1 < cycle.size() ? i + 1 : 0];
       Uses& u = uses[cycle_edges[i]];
-      if (u.count < 2) {
-        u.poly[u.count] = p;
-        u.forward[u.count] = a < b;
-      }
-      u.count = static_cast<std::uint8_t>(std::min(u.count + 1, 3));
+      const std::uint32_t use = p << 1 | (a < b ? 1u : 0u);
+      if (u.side[0] == kNone)
+        u.side[0] = use;
+      else
+        u.side[1] = u.side[1] == kNone ? use : kMany;
     }
   }
   auto reverse = [&](std::uint32_t p) {
@@ -341,13 +343,13 @@ void orient_polygons(Ragged& polygons, const Ragged& edges, std::uint32_t edge_c
       const std::uint32_t p = component[head];
       for (std::uint32_t e : edges[p]) {
         const Uses& u = uses[e];
-        if (u.count != 2) continue;
-        const int self = u.poly[0] == p ? 0 : 1, other = 1 - self;
-        const std::uint32_t q = u.poly[other];
+        if (u.side[1] >= kMany) continue;  // (one use, or more than two)
+        const int self = u.side[0] >> 1 == p ? 0 : 1, other = 1 - self;
+        const std::uint32_t q = u.side[other] >> 1;
         if (state[q]) continue;
         // Directions as stored; a reversed polygon has its direction flipped. Opposite is wanted.
-        const bool p_forward = u.forward[self] != (state[p] == 2);
-        state[q] = p_forward == u.forward[other] ? 2 : 1;
+        const bool p_forward = (u.side[self] & 1) != (state[p] == 2);
+        state[q] = p_forward == (u.side[other] & 1) ? 2 : 1;
         component.push_back(q);
       }
     }

@@ -179,6 +179,13 @@ std::vector<double> project_points(const Projection& p, std::span<const double> 
   return out;
 }
 
+const double* vertices_as_projected(const Projection& p, const CellComplex& cc) {
+  if (p.changes_points || !cc.boundary_vertices.empty()) return nullptr;
+  for (const double x : cc.vertices)
+    if (x == 0 && std::signbit(x)) return nullptr;
+  return cc.vertices.data();
+}
+
 PointArray project_vertices(const Projection& p, const CellComplex& cc) {
   // (written in full below: no zeros first, and no copy of the vertices in the global numbering)
   const std::size_t interior = cc.vertices.size() / p.d, boundary = cc.boundary_vertices.size() / p.d;

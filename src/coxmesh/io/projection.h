@@ -56,4 +56,9 @@ std::vector<double> project_points(const Projection& projection, std::span<const
 /// boundary), read where they are.
 PointArray project_vertices(const Projection& projection, const CellComplex& cc);
 
+/// The complex's vertices themselves when they are their own projection (the identity of R³, no
+/// boundary vertices, no coordinate −0, which the projection writes as +0), else nullptr: a writer
+/// then reads them where they are instead of a copy (n × 3 doubles it would write for the first time).
+const double* vertices_as_projected(const Projection& projection, const CellComplex& cc);
+
 }  // namespace coxmesh

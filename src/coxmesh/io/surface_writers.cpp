@@ -109,7 +109,9 @@ WrittenCounts write_off(std::ostream& os, const CellComplex& cc, const Projectio
 
 WrittenCounts write_ply(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices) {
   require_polygons(cc, "PLY");
-  const PointArray p3 = project_vertices(projection, cc);
+  const double* same = vertices_as_projected(projection, cc);
+  const PointArray copy = same ? PointArray() : project_vertices(projection, cc);
+  const std::span<const double> p3 = same ? std::span<const double>(same, cc.vertices.size()) : std::span(copy);
   const Ragged polygons = oriented_polygon_cycles(cc, p3.data());
   WrittenCounts counts;
   counts.points = p3.size() / 3;

@@ -25,37 +25,6 @@ Simplex face_from_indices(const Simplex& sigma, const int* indices, int k) {
   return f;
 }
 
-Simplex facet_without(const Simplex& sigma, int j) {
-  // Dropping v_j merges blocks j−1 and j; dropping v_0 moves the base to v_1 and block 0 into the
-  // last block (which holds d, so the result stays canonical).
-  const int l = sigma.k, d = sigma.d;
-  COXMESH_DEBUG_ASSERT(l >= 1 && j >= 0 && j <= l);
-  Simplex f = sigma;
-  f.k = static_cast<std::uint8_t>(l - 1);
-  if (j == 0) {
-    for (int i = 0; i < d; ++i) f.y[i] += sigma.block[i] == 0 ? 1 : 0;
-    for (int i = 0; i <= d; ++i)
-      f.block[i] = static_cast<std::uint8_t>(sigma.block[i] == 0 ? l - 1 : sigma.block[i] - 1);
-  } else {
-    for (int i = 0; i <= d; ++i) f.block[i] = static_cast<std::uint8_t>(sigma.block[i] - (sigma.block[i] >= j ? 1 : 0));
-  }
-  return f;
-}
-
-int extra_vertex_index(const Simplex& tau, const Simplex& mu) {
-  COXMESH_DEBUG_ASSERT(mu.k == tau.k + 1 && mu.d == tau.d);
-  COXMESH_PARANOID_ASSERT(is_face_of(tau, mu));
-  // Same base vertex: μ splits a block b of τ in two and its new vertex comes right after v_b, so
-  // b is the smallest τ-block of an index whose block number changed. Otherwise the split put
-  // the part without d in front and the new vertex is μ's base.
-  for (int i = 0; i < tau.d; ++i)
-    if (tau.y[i] != mu.y[i]) return 0;
-  int b = tau.k + 1;
-  for (int i = 0; i <= tau.d; ++i)
-    if (tau.block[i] != mu.block[i] && tau.block[i] < b) b = tau.block[i];
-  return b + 1;
-}
-
 namespace {
 
 // kD > 0: the loops over d unrolled for this d (the common small dimensions; `check` of T³ ⊂ R⁶,

@@ -13,13 +13,43 @@ namespace coxmesh {
 /// `indices` has k+1 entries; preconditions (checked by the caller): increasing and ≤ l.
 Simplex face_from_indices(const Simplex& sigma, const int* indices, int k);
 
+/// True iff τ is a face of σ (every vertex of τ is a vertex of σ, thesis §3.5). O(d·(dim τ + 1)).
+bool is_face_of(const Simplex& tau, const Simplex& sigma);
+
 /// The facet of σ opposite its vertex j (0 ≤ j ≤ dim σ, dim σ ≥ 1): face_from_indices with every
 /// index but j, in one pass. O(d).
-Simplex facet_without(const Simplex& sigma, int j);
+inline Simplex facet_without(const Simplex& sigma, int j) {
+  // Dropping v_j merges blocks j−1 and j; dropping v_0 moves the base to v_1 and block 0 into the
+  // last block (which holds d, so the result stays canonical).
+  const int l = sigma.k, d = sigma.d;
+  COXMESH_DEBUG_ASSERT(l >= 1 && j >= 0 && j <= l);
+  Simplex f = sigma;
+  f.k = static_cast<std::uint8_t>(l - 1);
+  if (j == 0) {
+    for (int i = 0; i < d; ++i) f.y[i] += sigma.block[i] == 0 ? 1 : 0;
+    for (int i = 0; i <= d; ++i)
+      f.block[i] = static_cast<std::uint8_t>(sigma.block[i] == 0 ? l - 1 : sigma.block[i] - 1);
+  } else {
+    for (int i = 0; i <= d; ++i) f.block[i] = static_cast<std::uint8_t>(sigma.block[i] - (sigma.block[i] >= j ? 1 : 0));
+  }
+  return f;
+}
 
 /// For a facet τ of μ: the index in μ's vertex order of the vertex of μ not in τ. Vertex i of τ is
 /// vertex i of μ below that index and vertex i + 1 from it on. O(d).
-int extra_vertex_index(const Simplex& tau, const Simplex& mu);
+inline int extra_vertex_index(const Simplex& tau, const Simplex& mu) {
+  COXMESH_DEBUG_ASSERT(mu.k == tau.k + 1 && mu.d == tau.d);
+  COXMESH_PARANOID_ASSERT(is_face_of(tau, mu));
+  // Same base vertex: μ splits a block b of τ in two and its new vertex comes right after v_b, so
+  // b is the smallest τ-block of an index whose block number changed. Otherwise the split put
+  // the part without d in front and the new vertex is μ's base.
+  for (int i = 0; i < tau.d; ++i)
+    if (tau.y[i] != mu.y[i]) return 0;
+  int b = tau.k + 1;
+  for (int i = 0; i <= tau.d; ++i)
+    if (tau.block[i] != mu.block[i] && tau.block[i] < b) b = tau.block[i];
+  return b + 1;
+}
 
 /// For packed keys (simplex.h) τ of dimension l − 1 and σ of dimension l ≥ 1, both of the form pack()
 /// writes (is_packed_simplex): the j with τ = facet_without(σ, j), or −1 when τ is not a facet of σ.
@@ -48,8 +78,5 @@ class FaceEnumerator {
 
 /// Index j of the vertex v of σ (v = v_j), or −1 if v is not a vertex of σ. O(d).
 int vertex_index(const Simplex& sigma, const std::int32_t* v);
-
-/// True iff τ is a face of σ (every vertex of τ is a vertex of σ, thesis §3.5). O(d·(dim τ + 1)).
-bool is_face_of(const Simplex& tau, const Simplex& sigma);
 
 }  // namespace coxmesh

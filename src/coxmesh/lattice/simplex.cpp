@@ -92,28 +92,7 @@ bool operator<(const Simplex& a, const Simplex& b) {
   return false;
 }
 
-void pack(const Simplex& s, std::uint32_t* out) {
-  const int d = s.d;
-  for (int i = 0; i < d; ++i) out[i] = static_cast<std::uint32_t>(s.y[i]);
-  std::uint32_t* labels = out + d;
-  const int nwords = (d + 1 + 3) / 4;
-  for (int w = 0; w < nwords; ++w) {
-    std::uint32_t word;
-    std::memcpy(&word, s.block.data() + 4 * w, 4);  // unused labels are zero, so this is canonical
-    labels[w] = word;
-  }
-}
-
 const Simplex kBlankSimplex{};
-
-Simplex unpack(const std::uint32_t* words, int d) {
-  Simplex s = kBlankSimplex;
-  s.d = static_cast<std::uint8_t>(d);
-  for (int i = 0; i < d; ++i) s.y[i] = static_cast<std::int32_t>(words[i]);
-  std::memcpy(s.block.data(), words + d, 4 * ((d + 1 + 3) / 4));
-  s.k = s.block[d];
-  return s;
-}
 
 bool is_packed_simplex(const std::uint32_t* words, int d, int k) {
   if (d < 1 || d > kMaxDimension || k < 0 || k > d) return false;

@@ -83,8 +83,26 @@ bool operator<(const Simplex& a, const Simplex& b);
 // ---- Packed form: the compact key stored in hash sets and output maps --------------------------
 // d words for y, then the d+1 block labels as bytes, 4 per word. For d = 3 that is 16 bytes.
 constexpr int packed_words(int d) { return d + (d + 1 + 3) / 4; }
-void pack(const Simplex& s, std::uint32_t* out);
-Simplex unpack(const std::uint32_t* words, int d);
+// (inline, as the other helpers of the walk's and the cell complex's loops: called per cofacet)
+inline void pack(const Simplex& s, std::uint32_t* out) {
+  const int d = s.d;
+  for (int i = 0; i < d; ++i) out[i] = static_cast<std::uint32_t>(s.y[i]);
+  std::uint32_t* labels = out + d;
+  const int nwords = (d + 1 + 3) / 4;
+  for (int w = 0; w < nwords; ++w) {
+    std::uint32_t word;
+    std::memcpy(&word, s.block.data() + 4 * w, 4);  // unused labels are zero, so this is canonical
+    labels[w] = word;
+  }
+}
+inline Simplex unpack(const std::uint32_t* words, int d) {
+  Simplex s = kBlankSimplex;
+  s.d = static_cast<std::uint8_t>(d);
+  for (int i = 0; i < d; ++i) s.y[i] = static_cast<std::int32_t>(words[i]);
+  std::memcpy(s.block.data(), words + d, 4 * ((d + 1 + 3) / 4));
+  s.k = s.block[d];
+  return s;
+}
 /// Whether `words` is the packed form of a simplex of dimension k in R^d, as pack() writes it: the
 /// block labels of 0..d use each of 0..k, d's is k (the last block), the label bytes after d are
 /// zero, and every coordinate is within ±kMaxLatticeCoordinate. O(d), on the words (no unpack), for
