@@ -761,16 +761,22 @@ TEST(Projection, VerticesServeAsTheirOwnProjectionOnlyWhenUnchanged) {
   cc.ambient_dimension = 3;
   cc.vertices = {1.5, 0.0, -2.0, 3.0, -4.0, 0.25};
   const Projection identity = make_projection("", 3, {});
-  const PointArray copy = project_vertices(identity, cc);
-  ASSERT_EQ(vertices_as_projected(identity, cc), cc.vertices.data());
-  EXPECT_EQ(std::memcmp(copy.data(), cc.vertices.data(), copy.size() * sizeof(double)), 0);
-  EXPECT_EQ(vertices_as_projected(make_projection("1,3,2", 3, {}), cc), nullptr);
+  EXPECT_EQ(ProjectedVertices(identity, cc).points().data(), cc.vertices.data());
+  const ProjectedVertices swapped(make_projection("1,3,2", 3, {}), cc);
+  ASSERT_EQ(swapped.points().size(), 6u);
+  EXPECT_NE(swapped.points().data(), cc.vertices.data());
+  EXPECT_EQ(swapped.points()[1], -2.0);
   cc.vertices[1] = -0.0;
-  EXPECT_FALSE(std::signbit(project_vertices(identity, cc)[1]));
-  EXPECT_EQ(vertices_as_projected(identity, cc), nullptr);
+  const ProjectedVertices signed_zero(identity, cc);
+  EXPECT_NE(signed_zero.points().data(), cc.vertices.data());
+  EXPECT_FALSE(std::signbit(signed_zero.points()[1]));
+  EXPECT_EQ(std::vector<double>(signed_zero.points().begin(), signed_zero.points().end()),
+            (std::vector<double>{1.5, 0.0, -2.0, 3.0, -4.0, 0.25}));
   cc.vertices[1] = 0.0;
   cc.boundary_vertices = {1, 2, 3};
-  EXPECT_EQ(vertices_as_projected(identity, cc), nullptr);
+  const ProjectedVertices with_boundary(identity, cc);
+  ASSERT_EQ(with_boundary.points().size(), 9u);
+  EXPECT_EQ(with_boundary.points()[6], 1.0);
 }
 
 TEST(AtomicFile, ErrorsLeaveThePreviousFileUntouched) {

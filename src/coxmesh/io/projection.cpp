@@ -3,6 +3,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -179,20 +180,17 @@ std::vector<double> project_points(const Projection& p, std::span<const double> 
   return out;
 }
 
-const double* vertices_as_projected(const Projection& p, const CellComplex& cc) {
-  if (p.changes_points || !cc.boundary_vertices.empty()) return nullptr;
-  for (const double x : cc.vertices)
-    if (x == 0 && std::signbit(x)) return nullptr;
-  return cc.vertices.data();
-}
-
-PointArray project_vertices(const Projection& p, const CellComplex& cc) {
+ProjectedVertices::ProjectedVertices(const Projection& p, const CellComplex& cc) {
+  const auto negative_zero = [](double x) { return x == 0 && std::signbit(x); };
+  if (!p.changes_points && cc.boundary_vertices.empty() && std::ranges::none_of(cc.vertices, negative_zero)) {
+    own_ = cc.vertices;
+    return;
+  }
   // (written in full below: no zeros first, and no copy of the vertices in the global numbering)
   const std::size_t interior = cc.vertices.size() / p.d, boundary = cc.boundary_vertices.size() / p.d;
-  PointArray out(3 * (interior + boundary));
-  project_rows(p, cc.vertices, out.data());
-  project_rows(p, cc.boundary_vertices, out.data() + 3 * interior);
-  return out;
+  copy_ = PointArray(3 * (interior + boundary));
+  project_rows(p, cc.vertices, copy_.data());
+  project_rows(p, cc.boundary_vertices, copy_.data() + 3 * interior);
 }
 
 }  // namespace coxmesh

@@ -52,13 +52,18 @@ Projection make_projection(const std::string& spec, int d, std::span<const doubl
 ///   tangent hyperplane (it has no image; give another pole).
 std::vector<double> project_points(const Projection& projection, std::span<const double> points);
 
-/// project_points of the complex's vertices in the global numbering (polygons.h: interior, then
-/// boundary), read where they are.
-PointArray project_vertices(const Projection& projection, const CellComplex& cc);
+/// The complex's vertices in R³ in the global numbering (polygons.h: interior, then boundary), 3
+/// numbers each: the complex's own array where it is its own projection (the identity of R³, no
+/// boundary vertices, no coordinate −0, which the projection writes as +0), else project_points of
+/// them into a copy. (A copy is n × 3 doubles written for the first time: pages to fault in.)
+class ProjectedVertices {
+ public:
+  ProjectedVertices(const Projection& projection, const CellComplex& cc);
+  std::span<const double> points() const { return own_.data() ? own_ : std::span<const double>(copy_); }
 
-/// The complex's vertices themselves when they are their own projection (the identity of R³, no
-/// boundary vertices, no coordinate −0, which the projection writes as +0), else nullptr: a writer
-/// then reads them where they are instead of a copy (n × 3 doubles it would write for the first time).
-const double* vertices_as_projected(const Projection& projection, const CellComplex& cc);
+ private:
+  std::span<const double> own_;  // (the complex's vertices, or empty)
+  PointArray copy_;
+};
 
 }  // namespace coxmesh

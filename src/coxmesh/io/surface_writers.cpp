@@ -109,9 +109,8 @@ WrittenCounts write_off(std::ostream& os, const CellComplex& cc, const Projectio
 
 WrittenCounts write_ply(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices) {
   require_polygons(cc, "PLY");
-  const double* same = vertices_as_projected(projection, cc);
-  const PointArray copy = same ? PointArray() : project_vertices(projection, cc);
-  const std::span<const double> p3 = same ? std::span<const double>(same, cc.vertices.size()) : std::span(copy);
+  const ProjectedVertices projected(projection, cc);
+  const std::span<const double> p3 = projected.points();
   const Ragged polygons = oriented_polygon_cycles(cc, p3.data());
   WrittenCounts counts;
   counts.points = p3.size() / 3;
@@ -148,7 +147,8 @@ WrittenCounts write_ply(std::ostream& os, const CellComplex& cc, const Projectio
 WrittenCounts write_obj(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices) {
   if (cc.manifold_dimension < 1)
     throw InputError("OBJ holds lines and polygons, but this is a 0-manifold: use .vtu or .cxm");
-  const PointArray p3 = project_vertices(projection, cc);
+  const ProjectedVertices projected(projection, cc);
+  const std::span<const double> p3 = projected.points();
   WrittenCounts counts;
   counts.points = p3.size() / 3;
   std::string out = "# written by coxmesh\n";

@@ -156,7 +156,8 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
                            const VtuGlobalIds* ids) {
   const std::string index_type = sizeof(Index) == 4 ? "Int32" : "Int64";
   const int d = cc.ambient_dimension, m = cc.manifold_dimension;
-  const PointArray p3 = project_vertices(projection, cc);
+  const ProjectedVertices projected(projection, cc);
+  const std::span<const double> p3 = projected.points();
   const std::uint32_t n0 = cell_count(cc, CellKind::interior, 0), nv = vertex_count(cc);
   WrittenCounts counts;
   counts.points = nv;
