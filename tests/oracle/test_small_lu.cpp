@@ -1,6 +1,7 @@
 // SmallLu (oracle/small_lu.h), the oracle's LU with partial pivoting: solves of random well-
-// conditioned systems against Gaussian elimination in long double, the columns of the inverse,
-// singular matrices reported, systems that need row exchanges, and the error bound it states.
+// conditioned systems against Gaussian elimination in long double, the columns of the inverse, the
+// same bits as the textbook loops at every size, singular matrices reported, systems that need row
+// exchanges, and the error bound it states.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -93,6 +94,66 @@ TEST(SmallLu, SolvesRandomWellConditionedSystems) {
           ASSERT_NEAR(s, r == c ? 1.0 : 0.0, 1e-12) << "n " << n << " column " << c;
         }
       }
+    }
+}
+
+// The textbook loops, operation by operation: the fixed sizes of SmallLu (unrolled) must give the
+// same bits, or the oracle's answers, and so the meshes, would change with the code's shape.
+struct TextbookLu {
+  int n;
+  Matrix lu;
+  std::vector<int> perm;
+  double& at(int r, int c) { return lu[c * n + r]; }
+  TextbookLu(int size, const Matrix& m) : n(size), lu(m), perm(size) {
+    for (int r = 0; r < n; ++r) perm[r] = r;
+    for (int c = 0; c < n; ++c) {
+      int p = c;
+      for (int r = c + 1; r < n; ++r)
+        if (std::abs(at(r, c)) > std::abs(at(p, c))) p = r;
+      for (int j = 0; j < n; ++j) std::swap(at(p, j), at(c, j));
+      std::swap(perm[p], perm[c]);
+      for (int r = c + 1; r < n; ++r) {
+        const double f = at(r, c) /= at(c, c);
+        for (int j = c + 1; j < n; ++j) at(r, j) -= f * at(c, j);
+      }
+    }
+  }
+  std::vector<double> solve(const std::vector<double>& b) {
+    std::vector<double> x(n);
+    for (int r = 0; r < n; ++r) {
+      double s = b[perm[r]];
+      for (int j = 0; j < r; ++j) s -= at(r, j) * x[j];
+      x[r] = s;
+    }
+    for (int r = n - 1; r >= 0; --r) {
+      double s = x[r];
+      for (int j = r + 1; j < n; ++j) s -= at(r, j) * x[j];
+      x[r] = s / at(r, r);
+    }
+    return x;
+  }
+};
+
+TEST(SmallLu, FixedSizesGiveTheBitsOfTheTextbookLoops) {
+  std::mt19937_64 rng(20261203);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  SmallLu lu;
+  for (int n = 1; n <= 12; ++n)
+    for (int trial = 0; trial < 50; ++trial) {
+      Matrix m(n * n);
+      for (double& v : m) v = u(rng);  // not dominant: rounding everywhere
+      std::vector<double> b(n), x(n);
+      for (double& v : b) v = u(rng);
+      ASSERT_TRUE(lu.factor(n, m.data()));
+      TextbookLu reference(n, m);
+      lu.solve(b.data(), x.data());
+      const std::vector<double> expected = reference.solve(b);
+      for (int i = 0; i < n; ++i) ASSERT_EQ(x[i], expected[i]) << "n " << n << " trial " << trial;
+      std::vector<double> unit(n, 0.0);
+      unit[n - 1] = 1;
+      lu.solve_unit(n - 1, x.data());
+      const std::vector<double> column = reference.solve(unit);
+      for (int i = 0; i < n; ++i) ASSERT_EQ(x[i], column[i]) << "n " << n << " trial " << trial;
     }
 }
 

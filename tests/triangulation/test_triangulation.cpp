@@ -170,6 +170,42 @@ TEST(Triangulation, VertexCoordinatesMatchLatticeVertices) {
   }
 }
 
+// The oracle's intersection points are sums over these coordinates: each vertex must be its
+// predecessor plus the columns of its block, added in increasing column order, bit for bit.
+TEST(Triangulation, VertexCoordinatesAddEachBlockInColumnOrder) {
+  const int d = 9;
+  const Triangulation t = Triangulation::coxeter(d).rotated(3).with_longest_edge(1.1);
+  const Eigen::MatrixXd& m = t.matrix();
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-4, 4);
+  int multi_column_blocks = 0;
+  for (int trial = 0; trial < 100; ++trial) {
+    std::vector<double> x(d);
+    for (auto& v : x) v = u(rng);
+    FaceEnumerator faces(t.locate(x), 1 + trial % (d - 1));
+    for (Simplex f; faces.next(f);) {
+      std::vector<double> xs((f.k + 1) * d);
+      t.vertex_coordinates(f, xs.data());
+      std::int32_t v[kMaxDimension];
+      f.vertex(0, v);
+      std::vector<double> expected(d);
+      t.cartesian(v, expected.data());
+      for (int i = 0; i < d; ++i) ASSERT_EQ(xs[i], expected[i]);
+      for (int j = 1; j <= f.k; ++j) {
+        int columns = 0;
+        for (int e = 0; e < d; ++e)
+          if (f.block[e] == j - 1) {
+            ++columns;
+            for (int i = 0; i < d; ++i) expected[i] += m(i, e);
+          }
+        multi_column_blocks += columns > 1;
+        for (int i = 0; i < d; ++i) ASSERT_EQ(xs[j * d + i], expected[i]) << "vertex " << j;
+      }
+    }
+  }
+  EXPECT_GT(multi_column_blocks, 100);
+}
+
 TEST(Triangulation, RotationIsDeterministicAndOrthogonal) {
   const Triangulation a = Triangulation::coxeter(6).rotated(42), b = Triangulation::coxeter(6).rotated(42);
   EXPECT_EQ(a.matrix(), b.matrix());

@@ -2,6 +2,7 @@
 #include "coxmesh/oracle/implicit_oracle.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -40,16 +41,39 @@ ImplicitOracle::ImplicitOracle(const Triangulation& triangulation, FunctionPtr f
   front_used_.assign(kFrontSlots, 0);
 }
 
+namespace {
+
+// Odd constants from splitmix64, one per coordinate, for ImplicitOracle::front_slot.
+constexpr auto kSlotMultipliers = [] {
+  std::array<std::uint64_t, kMaxDimension> m{};
+  std::uint64_t x = 0;
+  for (auto& c : m) {
+    std::uint64_t z = x += 0x9E3779B97F4A7C15ull;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    c = (z ^ (z >> 31)) | 1;
+  }
+  return m;
+}();
+
+}  // namespace
+
+// The slot of v among the recent vertices: a sum of independent products, cheaper than the chain of
+// hash_words (the big table's hash, needed only when the slot holds another vertex).
+[[gnu::always_inline]] inline std::size_t ImplicitOracle::front_slot(const std::int32_t* v) const {
+  std::uint64_t h = 0;
+  for (int i = 0; i < d_; ++i) h += static_cast<std::uint64_t>(static_cast<std::uint32_t>(v[i])) * kSlotMultipliers[i];
+  return h >> (64 - kFrontBits);
+}
+
 const double* ImplicitOracle::values_at(const std::int32_t* v) {
   if (!cache_enabled_) {
     evaluate(v, scratch_.data());
     return scratch_.data();
   }
-  const auto* key = reinterpret_cast<const std::uint32_t*>(v);
-  const std::uint64_t h = hash_words(key, d_);
   // The walk meets each vertex many times within a short while: a small direct-mapped cache of
   // recent vertices (a few cache lines per probe) answers most lookups before the big table.
-  const std::size_t slot = h & (kFrontSlots - 1);
+  const std::size_t slot = front_slot(v);
   std::int32_t* front_key = front_keys_.data() + slot * d_;
   double* front = front_values_.data() + slot * stride_;
   if (front_used_[slot]) {
@@ -57,6 +81,8 @@ const double* ImplicitOracle::values_at(const std::int32_t* v) {
     for (int i = 0; i < d_; ++i) diff |= v[i] ^ front_key[i];
     if (diff == 0) return front;
   }
+  const auto* key = reinterpret_cast<const std::uint32_t*>(v);
+  const std::uint64_t h = hash_words(key, d_);
   front_used_[slot] = 0;
   if (shared_) {
     shared_->get(v, h, front, [&](double* out) { evaluate(v, out); });
@@ -185,11 +211,10 @@ Intersection ImplicitOracle::intersect(const Simplex& tau, double* point) {
 // values_at(v)'s reads: its slot of the recent vertices, and its slot in the big table.
 void ImplicitOracle::prefetch_pivot(const std::int32_t* v) {
   if (!cache_enabled_ || shared_) return;
-  const std::uint64_t h = hash_words(reinterpret_cast<const std::uint32_t*>(v), d_);
-  const std::size_t slot = h & (kFrontSlots - 1);
+  const std::size_t slot = front_slot(v);
   __builtin_prefetch(front_keys_.data() + slot * d_);
   __builtin_prefetch(front_values_.data() + slot * stride_);
-  if (cache_.indexed()) cache_.prefetch(h);
+  if (cache_.indexed()) cache_.prefetch(hash_words(reinterpret_cast<const std::uint32_t*>(v), d_));
 }
 
 // Door-in/door-out: on μ = τ ∪ {v}, the points of M̂ are λ(t) = (λ_τ − t·w, t) with M(τ)·w = (1, F(v)),
@@ -225,23 +250,24 @@ int ImplicitOracle::pivot_exit(const std::int32_t* v) {
   a[0] = 1.0;
   for (int i = 0; i < k_; ++i) a[1 + i] = val[i];
   pivot_lu_.solve(a, w);
-  int exit = -1;
-  double best = 0;
-  for (int j = 0; j < n; ++j)
-    if (w[j] > 0) {
-      const double t = std::max(pivot_lambda_[j], 0.0) / w[j];
-      if (exit < 0 || t < best) exit = j, best = t;
-    }
-  if (exit < 0) return exit;
+  // The least ratio λ_j / w_j over w_j > 0, then the j that reach it. The signs of w and the order
+  // of the ratios are as good as random: minima and masks, not branches.
+  double ratio[SmallLu::kMaxN];
+  constexpr double kNone = std::numeric_limits<double>::infinity();
+  double best = kNone;
+  for (int j = 0; j < n; ++j) {
+    ratio[j] = std::max(pivot_lambda_[j], 0.0) / w[j];
+    best = std::min(best, w[j] > 0 ? ratio[j] : kNone);
+  }
+  std::uint32_t tied = 0;
+  for (int j = 0; j < n; ++j) tied |= static_cast<std::uint32_t>((w[j] > 0) & (ratio[j] == best)) << j;
+  if (tied == 0) return -1;
   // Ties (a vertex of τ on M makes λ_τ = e_j, and every ratio but one 0): the transversality rule
   // follows M̂ perturbed to F̂ = (ε, ε², …), where λ_τ(ε) = Σ_c ε^c·(column c of M(τ)⁻¹), so the
   // ratio test compares the rows of M(τ)⁻¹ divided by w_j lexicographically (the lexicographic
   // pivoting rule of PL continuation). Ties are exact equalities (a tiny λ_j that is not 0 decides
   // by itself, and blurring ties with a tolerance made more guesses wrong). Only a guess:
   // intersect() checks it.
-  std::uint32_t tied = 0;
-  for (int j = 0; j < n; ++j)
-    if (w[j] > 0 && std::max(pivot_lambda_[j], 0.0) / w[j] == best) tied |= 1u << j;
   for (int c = 1; c < n && (tied & (tied - 1)) != 0; ++c) {
     double low = std::numeric_limits<double>::infinity();
     for (int j = 0; j < n; ++j)
@@ -255,9 +281,7 @@ int ImplicitOracle::pivot_exit(const std::int32_t* v) {
     for (int j = 0; j < n; ++j)
       if ((tied >> j & 1) && pivot_rows_[j * n + c] / w[j] > low) tied &= ~(1u << j);
   }
-  for (int j = 0; j < n; ++j)
-    if (tied >> j & 1) return j;
-  return exit;
+  return std::countr_zero(tied);  // the first of those left
 }
 
 }  // namespace coxmesh

@@ -67,7 +67,9 @@ class ImplicitOracle final : public IntersectionOracle {
   FunctionPtr f_, domain_;
   int d_, k_, stride_;
   std::shared_ptr<SharedVertexValues> shared_;
-  static constexpr std::size_t kFrontSlots = 1 << 14;  // recent vertices, direct-mapped by hash
+  static constexpr int kFrontBits = 14;
+  static constexpr std::size_t kFrontSlots = std::size_t{1} << kFrontBits;  // recent vertices, direct-mapped
+  std::size_t front_slot(const std::int32_t* v) const;
   std::vector<std::int32_t> front_keys_;
   std::vector<double> front_values_;
   std::vector<std::uint8_t> front_used_;
