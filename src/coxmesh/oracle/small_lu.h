@@ -11,6 +11,14 @@
 #include <cmath>
 #include <utility>
 
+// GCC unrolls the loops of constant length; clang (the fuzz build) takes the same pragma as a
+// request and fails the build where its optimizer cannot honour it, so it gets none.
+#if defined(__clang__)
+#define COXMESH_UNROLL_9
+#else
+#define COXMESH_UNROLL_9 _Pragma("GCC unroll 9")
+#endif
+
 namespace coxmesh {
 
 // body.template operator()<N>() with N = n for the sizes unrolled, N = 0 (n known at run time) otherwise.
@@ -53,10 +61,10 @@ class SmallLu {
   void solve(const double* b, double* x) const {
     with_small_size(n_, [&]<int N>() {
       const int n = N ? N : n_;
-#pragma GCC unroll 9
+      COXMESH_UNROLL_9
       for (int r = 0; r < n; ++r) {
         double s = b[perm_[r]];
-#pragma GCC unroll 9
+        COXMESH_UNROLL_9
         for (int j = 0; j < r; ++j) s -= at<N>(r, j) * x[j];
         x[r] = s;
       }
@@ -68,10 +76,10 @@ class SmallLu {
   void solve_unit(int c, double* x) const {
     with_small_size(n_, [&]<int N>() {
       const int n = N ? N : n_;
-#pragma GCC unroll 9
+      COXMESH_UNROLL_9
       for (int r = 0; r < n; ++r) {
         double s = perm_[r] == c ? 1.0 : 0.0;
-#pragma GCC unroll 9
+        COXMESH_UNROLL_9
         for (int j = 0; j < r; ++j) s -= at<N>(r, j) * x[j];
         x[r] = s;
       }
@@ -104,19 +112,19 @@ class SmallLu {
       const int n = N ? N : n_;
       std::array<double, kMaxN> x;
       double norm_l = 0, norm_u = 0, inv_l = 0, inv_u = 0;
-#pragma GCC unroll 9
+      COXMESH_UNROLL_9
       for (int r = 0; r < n; ++r) {  // L has a unit diagonal
         double s = 1, row = 1;
-#pragma GCC unroll 9
+        COXMESH_UNROLL_9
         for (int j = 0; j < r; ++j) s += std::abs(at<N>(r, j)) * x[j], row += std::abs(at<N>(r, j));
         x[r] = s;
         inv_l = std::max(inv_l, s);
         norm_l = std::max(norm_l, row);
       }
-#pragma GCC unroll 9
+      COXMESH_UNROLL_9
       for (int r = n - 1; r >= 0; --r) {
         double s = 1, row = std::abs(at<N>(r, r));
-#pragma GCC unroll 9
+        COXMESH_UNROLL_9
         for (int j = r + 1; j < n; ++j) s += std::abs(at<N>(r, j)) * x[j], row += std::abs(at<N>(r, j));
         x[r] = s / std::abs(at<N>(r, r));
         inv_u = std::max(inv_u, x[r]);
@@ -141,22 +149,22 @@ class SmallLu {
     const int n = N ? N : n_;
     for (int i = 0; i < n * n; ++i) lu_[i] = m[i];
     for (int r = 0; r < n; ++r) perm_[r] = r;
-#pragma GCC unroll 9
+    COXMESH_UNROLL_9
     for (int c = 0; c < n; ++c) {
       int p = c;
-#pragma GCC unroll 9
+      COXMESH_UNROLL_9
       for (int r = c + 1; r < n; ++r)
         if (std::abs(at<N>(r, c)) > std::abs(at<N>(p, c))) p = r;
       if (at<N>(p, c) == 0) return false;
       if (p != c) {
-#pragma GCC unroll 9
+        COXMESH_UNROLL_9
         for (int j = 0; j < n; ++j) std::swap(at<N>(p, j), at<N>(c, j));
         std::swap(perm_[p], perm_[c]);
       }
-#pragma GCC unroll 9
+      COXMESH_UNROLL_9
       for (int r = c + 1; r < n; ++r) {
         const double f = at<N>(r, c) /= at<N>(c, c);
-#pragma GCC unroll 9
+        COXMESH_UNROLL_9
         for (int j = c + 1; j < n; ++j) at<N>(r, j) -= f * at<N>(c, j);
       }
     }
@@ -165,10 +173,10 @@ class SmallLu {
 
   template <int N>
   void back_substitute(double* x) const {
-#pragma GCC unroll 9
+    COXMESH_UNROLL_9
     for (int r = (N ? N : n_) - 1; r >= 0; --r) {
       double s = x[r];
-#pragma GCC unroll 9
+      COXMESH_UNROLL_9
       for (int j = r + 1; j < (N ? N : n_); ++j) s -= at<N>(r, j) * x[j];
       x[r] = s / at<N>(r, r);
     }
@@ -180,3 +188,5 @@ class SmallLu {
 };
 
 }  // namespace coxmesh
+
+#undef COXMESH_UNROLL_9
