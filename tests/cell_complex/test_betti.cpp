@@ -115,7 +115,7 @@ TEST(Betti, RotationGroupIsTheRealProjectiveSpace) {  // SO(3) ≅ RP³: Z/2 Bet
 
 // Manifolds of dimension 3 and 4, where only the (m−1)-skeleton is reduced after coreductions:
 // closed with cells left for the final reduction (T³) or none (S³), two components, with boundary,
-// a closed component beside one with boundary, with corners, S⁴, and a truncated run.
+// a closed component beside one with boundary, with corners, S⁴, S² × S², and a truncated run.
 TEST(Betti, ThreeManifoldsAgreeWithTheReference) {
   struct Case {
     const char* name;
@@ -159,6 +159,12 @@ TEST(Betti, ThreeManifoldsAgreeWithTheReference) {
        {1, 0, 0, 0},
        {half_space_domain({1, 0, 0, 0}, 0), half_space_domain({0, 1, 0, 0}, 0), half_space_domain({0, 0, 1, 0}, 0)}},
       {"S4 in R5", sphere(4, 5, 1.0), nullptr, Triangulation::coxeter(5).with_longest_edge(0.7), {}, {1, 0, 0, 0, 1}},
+      {"S2 x S2 in R6 (β_2 from the reduction of the 3-skeleton)",
+       expression_function("x1^2+x2^2+x3^2-1; x4^2+x5^2+x6^2-1", 6),
+       nullptr,
+       Triangulation::coxeter(6).with_longest_edge(1.3),
+       {},
+       {1, 0, 2, 0, 1}},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
@@ -191,5 +197,50 @@ TEST(Betti, ThreeManifoldsAgreeWithTheReference) {
     EXPECT_NE(mesh.status, TraceStatus::complete);
     EXPECT_FALSE(mesh.topology.closed);
     EXPECT_TRUE(mesh.topology.betti.empty());
+  }
+}
+
+// The closedness check (∂∂ = 0 on fingerprints of the boundaries) finds a cell whose boundary
+// does not close, on every level and kind: a facet swapped for another cell of its level, of an
+// interior 2- or 3-cell, of a boundary 2-cell, and the boundary facet of interior cells cut by the
+// domain.
+TEST(Betti, NoneForACellWhoseBoundaryDoesNotClose) {
+  const MeshReport mesh =
+      mesh_manifold(Triangulation::coxeter(4).with_longest_edge(0.5),
+                    [] {
+                      return ManifoldFunctions{sphere(3, 4, 1.0), half_space_domain({0.3, 0.1, 0.9, 0.2}, 0.4)};
+                    },
+                    {});
+  ASSERT_TRUE(mesh.topology.is_manifold) << mesh.topology.manifold_problem;
+  const auto swapped = [](std::uint32_t id, std::uint32_t count) { return id + 1 < count ? id + 1 : id - 1; };
+  const auto expect_open = [&](const CellComplex& cc, int j, const std::string& what) {
+    SCOPED_TRACE(what);
+    const TopologyReport report = analyze_topology(cc);
+    EXPECT_FALSE(report.closed);
+    EXPECT_TRUE(report.betti.empty());
+    EXPECT_NE(report.manifold_problem.find("a " + std::to_string(j) + "-cell is not closed"), std::string::npos)
+        << report.manifold_problem;
+  };
+  for (int j : {2, 3}) {
+    CellComplex cc = mesh.cells;
+    CellLevel& level = cc.interior[j];
+    std::uint32_t& facet = level.facet_ids[level.facet_offsets[level.size() / 2]];
+    facet = swapped(facet, cc.interior[j - 1].size());
+    expect_open(cc, j, "a facet of an interior " + std::to_string(j) + "-cell");
+  }
+  {
+    CellComplex cc = mesh.cells;
+    std::uint32_t& facet = cc.boundary[2].facet_ids[0];
+    facet = swapped(facet, cc.boundary[1].size());
+    expect_open(cc, 3, "a facet of a boundary 2-cell (found first as a face of the interior 3-cell it closes)");
+  }
+  for (int j : {2, 3}) {
+    CellComplex cc = mesh.cells;
+    IndexArray& boundary_facet = cc.interior[j].boundary_facet;
+    const auto cut = std::find_if(boundary_facet.begin(), boundary_facet.end(),
+                                  [](std::uint32_t f) { return f != CellLevel::kNone; });
+    ASSERT_NE(cut, boundary_facet.end());
+    *cut = swapped(*cut, cc.boundary[j - 1].size());
+    expect_open(cc, j, "the boundary facet of an interior " + std::to_string(j) + "-cell");
   }
 }

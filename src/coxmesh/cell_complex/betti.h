@@ -21,10 +21,9 @@ std::vector<std::size_t> betti_numbers_by_reduction(const CellComplex& cc, std::
 /// interior (m−1)-cells that have no boundary facet, the Euler characteristic gives β_{m−1}, and
 /// only β_1 … β_{m−2} are left, which the (m−1)-skeleton determines: nothing is left for m ≤ 2.
 /// Those (or all, for a complex that is not a manifold) come from the reduction of what remains
-/// after coreductions (a cell with exactly one remaining facet is removed with it) and collapses
-/// (a cell in exactly one remaining cell is removed with it), which keep the homology, started
-/// from one vertex per component; for the manifolds traced here they leave at most a few hundred
-/// cells. O(incidences) before that reduction.
+/// after coreductions (a cell with exactly one remaining facet is removed with it), which keep the
+/// homology, started from one vertex per component; they leave nothing of S³ and a few per cent
+/// of the cells of T³ and SO(3). O(incidences) per pass over the cells before that reduction.
 std::vector<std::size_t> betti_numbers(const CellComplex& cc, bool manifold);
 
 /// β_{m−1} of a manifold (m ≥ 1, m + 1 numbers in `betti`) from its Euler characteristic and the

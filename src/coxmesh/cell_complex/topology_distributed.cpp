@@ -222,7 +222,7 @@ void sort_unique(std::vector<std::uint32_t>& v) {
   v.erase(std::unique(v.begin(), v.end()), v.end());
 }
 
-// Collapses and coreductions (betti_shrink.cpp) over cells 0..n−1 in dimension order (n + 1
+// Collapses and coreductions (Mrozek and Batko; see betti_shrink.cpp) over cells 0..n−1 in dimension order (n + 1
 // offsets), whose facet lists hold local indices or, with kRemote, cells of another rank, which
 // count as never removed. Cells from `cut_first` on are the top dimension of a skeleton whose own
 // homology in that dimension is not wanted: one that is a cycle is removed alone.
@@ -275,7 +275,7 @@ class PairReducer {
       }
       const std::uint32_t a = pending_[head];
       if (removed(a)) continue;
-      if (free_down(a)) {  // (coreductions first, as betti_shrink.cpp)
+      if (free_down(a)) {  // (coreductions first: collapses alone stall on 3-manifolds)
         const std::uint32_t b = cell_[a].xdown;
         remove(a), remove(b);
       } else if (free_up(a)) {
