@@ -1,6 +1,7 @@
 // Tests of the simplex value type: canonical form, text form, order, packing, hashing.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <random>
 #include <set>
 #include <unordered_set>
@@ -73,6 +74,35 @@ Simplex random_simplex(std::mt19937_64& rng, int d) {
   return Simplex::from_partition(y, blocks);
 }
 }  // namespace
+
+// Strict avalanche on structured keys (packed simplices near the origin: small y, labels ≤ d):
+// flipping any bit of any word flips every bit of the hash about half the time. A hash that ignores
+// a word, or a sum of the words times constants without the final mix (whose low bits see only the
+// words' low bits), fails; so does one whose tag (the top 32 bits, the tables' home slot and tag)
+// misses some input bits.
+TEST(Simplex, HashAvalanchesOnStructuredKeys) {
+  std::mt19937_64 rng(11);
+  for (const int d : {3, 9, 31}) {
+    const int words = packed_words(d);
+    constexpr int kKeys = 300;
+    std::vector<int> flips(static_cast<std::size_t>(words) * 32 * 64, 0);
+    for (int t = 0; t < kKeys; ++t) {
+      std::uint32_t w[packed_words(kMaxDimension)];
+      pack(random_simplex(rng, d), w);
+      const std::uint64_t h = hash_words(w, words);
+      for (int bit = 0; bit < words * 32; ++bit) {
+        w[bit / 32] ^= 1u << bit % 32;
+        const std::uint64_t changed = h ^ hash_words(w, words);
+        w[bit / 32] ^= 1u << bit % 32;
+        for (int out = 0; out < 64; ++out) flips[static_cast<std::size_t>(bit) * 64 + out] += (changed >> out) & 1;
+      }
+    }
+    int worst = kKeys / 2;
+    for (const int f : flips) worst = std::abs(f - kKeys / 2) > std::abs(worst - kKeys / 2) ? f : worst;
+    EXPECT_GT(worst, kKeys * 3 / 10) << "d = " << d;  // (7 standard deviations from a half)
+    EXPECT_LT(worst, kKeys * 7 / 10) << "d = " << d;
+  }
+}
 
 TEST(Simplex, PackRoundTripAndHashQuality) {
   std::mt19937_64 rng(7);

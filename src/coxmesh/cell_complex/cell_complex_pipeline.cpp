@@ -102,9 +102,9 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
       counts[c] = static_cast<std::uint32_t>(count);
       std::uint32_t* keys = out.keys.data() + first * words;
       std::uint64_t* hashes = out.hashes.data() + first;
-      for_each_packed_cofacet(tau, d, [&](const std::uint32_t* nu) {
+      for_each_packed_cofacet(tau, d, [&](const std::uint32_t* nu, std::uint64_t hash) {
         for (int i = 0; i < words; ++i) *keys++ = nu[i];
-        *hashes++ = hash_words(nu, words);
+        *hashes++ = hash;
       });
     }
     out.ids.resize(out.hashes.size());

@@ -104,11 +104,12 @@ inline void CofaceEnumerator::gray_step() {
 }
 
 /// The cofacets of the simplex with packed key `key` (packed_words(d) words, simplex.h), as packed
-/// keys, in the order of CofaceEnumerator(unpack(key, d), k + 1): emit(const std::uint32_t* cofacet)
-/// is called with a view of a working key, valid during the call. The same block splits in Gray-code
-/// order (thesis §3.5), written straight into the packed form: one label byte (and, after a rotation,
-/// one y word) changes per cofacet, with no Simplex to copy or pack. For the cell complex, whose
-/// levels are cofacets of the level below (thesis §4.2).
+/// keys, in the order of CofaceEnumerator(unpack(key, d), k + 1): emit(const std::uint32_t* cofacet,
+/// std::uint64_t hash) is called with a view of a working key, valid during the call, and its
+/// hash_words. The same block splits in Gray-code order (thesis §3.5), written straight into the
+/// packed form: one label byte (and, after a rotation, one y word) changes per cofacet, with no
+/// Simplex to copy or pack, and the hash follows those words in O(1) (hash_sum_update). For the
+/// cell complex, whose levels are cofacets of the level below (thesis §4.2).
 namespace packed_detail {
 inline int label(const std::uint32_t* key, int d, int i) {
   return static_cast<int>((key[d + (i >> 2)] >> 8 * (i & 3)) & 0xFFu);
@@ -139,7 +140,12 @@ void for_each_packed_cofacet(const std::uint32_t* key, int d, Emit&& emit) {
   std::uint8_t sizes[kMaxDimension + 1];
   packed_detail::block_sizes(key, d, sizes);
   std::uint32_t cur[packed_words(kMaxDimension)];
-  for (int i = 0; i < d; ++i) cur[i] = key[i];
+  for (int i = 0; i < d + label_words; ++i) cur[i] = key[i];
+  std::uint64_t sum = hash_sum(cur, d + label_words);  // of cur, kept with every word written
+  const auto set = [&](int i, std::uint32_t word) {
+    sum = hash_sum_update(sum, i, cur[i], word);
+    cur[i] = word;
+  };
   for (int b = k; b >= 0; --b) {
     const int n = sizes[b];
     if (n < 2) continue;
@@ -157,17 +163,17 @@ void for_each_packed_cofacet(const std::uint32_t* key, int d, Emit&& emit) {
       for (int w = 0; w < label_words; ++w) {
         const int used = std::min(4, d + 1 - 4 * w);
         const std::uint32_t in_use = used == 4 ? ~0u : (std::uint32_t{1} << 8 * used) - 1;
-        cur[d + w] = labels[w] + ((((labels[w] + below_theta) & 0x80808080u) >> 7) & in_use);
+        set(d + w, labels[w] + ((((labels[w] + below_theta) & 0x80808080u) >> 7) & in_use));
       }
       const std::uint32_t steps = (std::uint32_t{1} << (n - 1)) - 1;
       for (std::uint32_t step = 1; step <= steps; ++step) {
         const int i = moving[std::countr_zero(step)];
-        cur[d + (i >> 2)] ^= toggle << 8 * (i & 3);
-        if (rotated) cur[i] ^= key[i] ^ (key[i] - 1);  // y_i ↔ y_i − 1
-        emit(static_cast<const std::uint32_t*>(cur));
+        set(d + (i >> 2), cur[d + (i >> 2)] ^ toggle << 8 * (i & 3));
+        if (rotated) set(i, cur[i] ^ key[i] ^ (key[i] - 1));  // y_i ↔ y_i − 1
+        emit(static_cast<const std::uint32_t*>(cur), hash_finish(sum));
       }
       if (rotated)  // (y back for the blocks after)
-        for (int j = 0; j + 1 < n; ++j) cur[moving[j]] = key[moving[j]];
+        for (int j = 0; j + 1 < n; ++j) set(moving[j], key[moving[j]]);
     }
   }
 }

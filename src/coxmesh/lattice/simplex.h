@@ -109,19 +109,44 @@ inline Simplex unpack(const std::uint32_t* words, int d) {
 /// keys read from a file.
 bool is_packed_simplex(const std::uint32_t* words, int d, int k);
 
-/// Strong 64-bit hash of packed words (a multiply-xorshift mix per word, then a final avalanche).
-inline std::uint64_t hash_words(const std::uint32_t* w, int n) {
-  std::uint64_t h = 0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(n);
-  for (int i = 0; i < n; ++i) {
-    h ^= w[i];
-    h *= 0xBF58476D1CE4E5B9ull;
-    h ^= h >> 31;
-  }
-  h ^= h >> 33;
-  h *= 0xFF51AFD7ED558CCDull;
-  h ^= h >> 33;
-  return h;
+/// Strong 64-bit hash of packed words, in two steps: a sum of the words times odd constants, one
+/// per position (hash_sum), then an avalanche of the sum (hash_finish). The sum is linear in each
+/// word, so a key that differs from the last one in a word or two is hashed in O(1)
+/// (hash_sum_update: the cofacet walk of the cell complex changes one or two words per cofacet);
+/// the avalanche makes every bit of the result, the table's tag above all, depend on every bit of
+/// every word (tests/lattice/test_simplex.cpp).
+namespace hash_detail {
+constexpr std::uint64_t splitmix(std::uint64_t x) {
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
 }
+inline constexpr auto kWordFactors = [] {
+  std::array<std::uint64_t, 64> f{};
+  for (std::size_t i = 0; i < f.size(); ++i) f[i] = splitmix(i) | 1;
+  return f;
+}();
+static_assert(packed_words(kMaxDimension) <= 64);
+}  // namespace hash_detail
+inline std::uint64_t hash_sum(const std::uint32_t* w, int n) {
+  std::uint64_t sum = static_cast<std::uint64_t>(n) * 0x9E3779B97F4A7C15ull;
+  for (int i = 0; i < n; ++i) sum += w[i] * hash_detail::kWordFactors[i];
+  return sum;
+}
+/// The sum after word i changed from `from` to `to`.
+inline std::uint64_t hash_sum_update(std::uint64_t sum, int i, std::uint32_t from, std::uint32_t to) {
+  return sum + (std::uint64_t{to} - from) * hash_detail::kWordFactors[i];
+}
+inline std::uint64_t hash_finish(std::uint64_t sum) {
+  sum ^= sum >> 32;
+  sum *= 0xBF58476D1CE4E5B9ull;
+  sum ^= sum >> 29;
+  sum *= 0xFF51AFD7ED558CCDull;
+  sum ^= sum >> 32;
+  return sum;
+}
+inline std::uint64_t hash_words(const std::uint32_t* w, int n) { return hash_finish(hash_sum(w, n)); }
 
 /// Hash of the whole simplex (vertex and partition); equal simplices hash equal.
 std::uint64_t hash_value(const Simplex& s);
