@@ -230,24 +230,14 @@ class PairReducer {
  public:
   PairReducer(std::span<const std::uint32_t> offsets, const std::vector<std::uint32_t>& facets,
               std::span<const std::uint32_t> remote_cofaces, std::uint32_t cut_first)
-      : offsets_(offsets),
-        facets_(facets),
-        cut_first_(cut_first),
-        cell_(offsets.size() - 1),
-        pinned_(offsets.size() - 1, 0) {
+      : offsets_(offsets), facets_(facets), cut_first_(cut_first), cell_(offsets.size() - 1) {
     const std::uint32_t n = static_cast<std::uint32_t>(cell_.size());
-    for (std::uint32_t a = 0; a < n; ++a) {
-      if (!remote_cofaces.empty() && remote_cofaces[a] > 0) pinned_[a] |= kPinnedUp;
-      for (std::uint32_t i = offsets_[a]; i < offsets_[a + 1]; ++i) {
-        const std::uint32_t f = facets_[i];
-        if (f & kRemote) {
-          pinned_[a] |= kPinnedDown;
-          continue;
+    for (std::uint32_t a = 0; a < n; ++a)
+      for (std::uint32_t i = offsets_[a]; i < offsets_[a + 1]; ++i)
+        if (const std::uint32_t f = facets_[i]; !(f & kRemote)) {
+          ++cell_[a].down, cell_[a].xdown ^= f;
+          ++cell_[f].up, cell_[f].xup ^= a;
         }
-        ++cell_[a].down, cell_[a].xdown ^= f;
-        ++cell_[f].up, cell_[f].xup ^= a;
-      }
-    }
     coface_start_.assign(n + 1, 0);
     std::uint64_t total = 0;
     for (std::uint32_t a = 0; a < n; ++a) {
@@ -260,12 +250,20 @@ class PairReducer {
     for (std::uint32_t a = n; a-- > 0;)
       for (std::uint32_t i = offsets_[a]; i < offsets_[a + 1]; ++i)
         if (!(facets_[i] & kRemote)) coface_ids_[--coface_start_[facets_[i]]] = a;
+    // A facet or coface on another rank counts twice in its count: never removed, so the count
+    // never comes down to the one or none that frees a cell (no separate array of such cells to
+    // read beside the counts).
+    for (std::uint32_t a = 0; a < n; ++a) {
+      for (std::uint32_t i = offsets_[a]; i < offsets_[a + 1]; ++i)
+        if (facets_[i] & kRemote) cell_[a].down += kPin;
+      if (!remote_cofaces.empty() && remote_cofaces[a] > 0) cell_[a].up += kPin;
+    }
     for (std::uint32_t a = 0; a < n; ++a)
-      if (free_down(a) || free_up(a) || cut_cycle(a)) pending_.push_back(a);
+      if (cell_[a].down == 1 || cell_[a].up == 1 || cut_cycle(a)) pending_.push_back(a);
   }
 
   // Removes a vertex whose class is accounted for elsewhere (one per component).
-  void remove_vertex(std::uint32_t v) { remove(v); }
+  void remove_vertex(std::uint32_t v) { remove(v, false, true); }
 
   void reduce() {
     for (std::size_t head = 0; head < pending_.size(); ++head) {
@@ -273,16 +271,22 @@ class PairReducer {
         pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(head));
         head = 0;
       }
+      fetch_ahead(head);
       const std::uint32_t a = pending_[head];
-      if (removed(a)) continue;
-      if (free_down(a)) {  // (coreductions first, as betti_shrink.cpp)
-        const std::uint32_t b = cell_[a].xdown;
-        remove(a), remove(b);
-      } else if (free_up(a)) {
-        const std::uint32_t b = cell_[a].xup;
-        remove(a), remove(b);
+      const Counts& ca = cell_[a];
+      if (ca.up == kRemoved) continue;
+      // As betti_shrink.cpp: coreductions first, and a pair's cells removed without visiting the
+      // other cell of the pair.
+      if (ca.down == 1) {
+        const std::uint32_t b = ca.xdown;
+        remove(a, false, ca.up != 0);
+        remove(b, cell_[b].down != 0, true);
+      } else if (ca.up == 1) {
+        const std::uint32_t b = ca.xup;
+        remove(a, ca.down != 0, false);
+        remove(b, true, cell_[b].up != 0);
       } else if (cut_cycle(a)) {  // (as betti_shrink.cpp: it changes only the skeleton's own H_top)
-        remove(a);
+        remove(a, false, ca.up != 0);
       }
     }
     pending_ = {};
@@ -293,37 +297,82 @@ class PairReducer {
 
  private:
   static constexpr std::uint32_t kRemoved = 0xFFFFFFFFu;
-  static constexpr std::uint8_t kPinnedDown = 1, kPinnedUp = 2;  // (a facet, a coface elsewhere)
+  static constexpr std::uint32_t kPin = 2;
   static constexpr std::size_t kCompactAt = 1 << 16;
+  static constexpr std::size_t kAhead = 16;
 
-  bool free_down(std::uint32_t a) const { return cell_[a].down == 1 && !(pinned_[a] & kPinnedDown); }
-  bool free_up(std::uint32_t a) const { return cell_[a].up == 1 && !(pinned_[a] & kPinnedUp); }
-  bool cut_cycle(std::uint32_t a) const { return a >= cut_first_ && cell_[a].down == 0 && !(pinned_[a] & kPinnedDown); }
+  bool cut_cycle(std::uint32_t a) const { return a >= cut_first_ && cell_[a].down == 0; }
 
-  void remove(std::uint32_t x) {
-    cell_[x].up = kRemoved, ++removed_count_;
-    for (std::uint32_t i = offsets_[x]; i < offsets_[x + 1]; ++i) {
-      const std::uint32_t f = facets_[i];
-      if ((f & kRemote) || removed(f)) continue;
-      cell_[f].xup ^= x;
-      if (--cell_[f].up == 1 && free_up(f)) pending_.push_back(f);
+  // The queue's cells are scattered over arrays far larger than the cache: their counts and lists
+  // are fetched ahead in stages, as betti_shrink.cpp's.
+  void fetch_ahead(std::size_t head) const {
+    if (head + 2 * kAhead < pending_.size()) {
+      const std::uint32_t f = pending_[head + 2 * kAhead];
+      __builtin_prefetch(&cell_[f]);
+      __builtin_prefetch(&offsets_[f]);
+      __builtin_prefetch(&coface_start_[f]);
     }
-    for (std::uint32_t i = coface_start_[x]; i < coface_start_[x + 1]; ++i) {
-      const std::uint32_t y = coface_ids_[i];
-      if (removed(y)) continue;
-      cell_[y].xdown ^= x;
-      if (--cell_[y].down <= 1 && (free_down(y) || cut_cycle(y))) pending_.push_back(y);
+    if (head + kAhead < pending_.size()) {
+      const std::uint32_t f = pending_[head + kAhead];
+      if (!removed(f)) {
+        __builtin_prefetch(&facets_[offsets_[f]]);
+        __builtin_prefetch(coface_ids_.data() + coface_start_[f]);
+      }
+    }
+    if (head + kAhead / 2 < pending_.size()) {  // (the other cell of its pair, if any)
+      const Counts& cf = cell_[pending_[head + kAhead / 2]];
+      if (cf.up != kRemoved && (cf.down == 1 || cf.up == 1)) {
+        const std::uint32_t b = cf.down == 1 ? cf.xdown : cf.xup;
+        __builtin_prefetch(&cell_[b]);
+        __builtin_prefetch(&offsets_[b]);
+        __builtin_prefetch(&coface_start_[b]);
+      }
+    }
+    if (head + kAhead * 3 / 8 < pending_.size()) {  // (its lists)
+      const Counts& cf = cell_[pending_[head + kAhead * 3 / 8]];
+      if (cf.up != kRemoved && (cf.down == 1 || cf.up == 1)) {
+        const std::uint32_t b = cf.down == 1 ? cf.xdown : cf.xup;
+        __builtin_prefetch(&facets_[offsets_[b]]);
+        __builtin_prefetch(coface_ids_.data() + coface_start_[b]);
+      }
+    }
+    if (head + kAhead / 4 < pending_.size()) {  // (the cofaces of a coreduction's facet)
+      const Counts& cf = cell_[pending_[head + kAhead / 4]];
+      if (cf.up != kRemoved && cf.down == 1)
+        for (std::uint32_t i = coface_start_[cf.xdown]; i < coface_start_[cf.xdown + 1]; ++i)
+          __builtin_prefetch(&cell_[coface_ids_[i]]);
     }
   }
 
+  // (visit_...: false when every remaining local facet or coface is the other cell of the pair,
+  // removed next, or none remains)
+  void remove(std::uint32_t x, bool visit_facets, bool visit_cofaces) {
+    cell_[x].up = kRemoved, ++removed_count_;
+    if (visit_facets)
+      for (std::uint32_t i = offsets_[x]; i < offsets_[x + 1]; ++i) {
+        const std::uint32_t f = facets_[i];
+        if ((f & kRemote) || removed(f)) continue;
+        cell_[f].xup ^= x;
+        if (--cell_[f].up == 1) pending_.push_back(f);
+      }
+    if (visit_cofaces)
+      for (std::uint32_t i = coface_start_[x]; i < coface_start_[x + 1]; ++i) {
+        const std::uint32_t y = coface_ids_[i];
+        if (removed(y)) continue;
+        cell_[y].xdown ^= x;
+        if (--cell_[y].down <= 1 && (cell_[y].down == 1 || y >= cut_first_)) pending_.push_back(y);
+      }
+  }
+
   struct Counts {
-    std::uint32_t down = 0, up = 0, xdown = 0, xup = 0;  // remaining local facets and cofaces
+    // remaining local facets and cofaces (+ kPin if any is on another rank), and the xor of the
+    // local ones' ids
+    std::uint32_t down = 0, up = 0, xdown = 0, xup = 0;
   };
   std::span<const std::uint32_t> offsets_;
   const std::vector<std::uint32_t>& facets_;
   std::uint32_t cut_first_;
-  std::vector<Counts> cell_;
-  std::vector<std::uint8_t> pinned_;
+  std::vector<Counts> cell_;  // (one cache line holds all four)
   std::vector<std::uint32_t> coface_start_, coface_ids_, pending_;
   std::size_t removed_count_ = 0;
 };
