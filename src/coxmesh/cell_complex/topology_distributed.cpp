@@ -653,7 +653,13 @@ TopologyReport analyze_topology_distributed(CellComplexPart&& part, Communicator
         const auto it = std::lower_bound(ghost.begin(), ghost.end(), std::make_pair(g, std::uint32_t{0}));
         return {words.data() + it->second + 1, words[it->second]};
       };
+      // As topology.cpp: per ridge (by global id) the parity of its count so far, the ridges met
+      // listed to clear it again (no sort per cell).
+      std::vector<std::uint8_t> odd(layout.total(), 0);
       std::vector<std::uint32_t> ridges;
+      const auto toggle = [&](std::uint32_t e) {
+        if ((odd[e] ^= 1)) ridges.push_back(e);
+      };
       for (int l = 2; l < layout.levels(); ++l) {
         const int j = l / 2;
         const bool boundary = l % 2 == 1;
@@ -670,11 +676,10 @@ TopologyReport analyze_topology_distributed(CellComplexPart&& part, Communicator
           } else {
             ridges.clear();
             for (std::uint32_t f : facets)
-              for (std::uint32_t e : facets_of(f, l - 2)) ridges.push_back(e);
-            std::sort(ridges.begin(), ridges.end());
-            for (std::size_t k = 0; k < ridges.size() && why.empty(); k += 2)
-              if (k + 1 == ridges.size() || ridges[k] != ridges[k + 1])
-                why = "a " + std::to_string(j) + "-cell is not closed (a face of its boundary is not shared)";
+              for (std::uint32_t e : facets_of(f, l - 2)) toggle(e);
+            bool closed = true;
+            for (std::uint32_t e : ridges) closed &= odd[e] == 0, odd[e] = 0;
+            if (!closed) why = "a " + std::to_string(j) + "-cell is not closed (a face of its boundary is not shared)";
           }
           if (!why.empty()) {  // (the first of this level here; a level before it in the order may fail too)
             const std::uint64_t k = check_order(l, layout.lo(l) + (i - layout.local_start[l]));
