@@ -501,7 +501,8 @@ TEST(DistributedTopology, CellsNotClosedAsOneProcess) {
     for (int ranks : {1, 2, 3, 4}) {
       SCOPED_TRACE(std::to_string(ranks) + " ranks");
       std::vector<DistributedTopologyStats> stats;
-      for (const TopologyReport& split : topology_on_ranks(deal_out(cc, ranks), stats)) expect_same_topology(split, one);
+      for (const TopologyReport& split : topology_on_ranks(deal_out(cc, ranks), stats))
+        expect_same_topology(split, one);
     }
   }
 }

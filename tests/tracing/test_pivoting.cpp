@@ -191,7 +191,8 @@ TEST(Pivoting, PipelineAsksAsOtherTransverseFacet) {
       asked.insert(asked.end(), key, key + packed_words(d));
       if (const std::uint32_t id = traced.simplices.find(key); id != PackedKeyIndex::kAbsent)
         return walk::Found{walk::Kind::inside, id};
-      return implicit.intersect(s, point.data()).hit ? walk::Found{walk::Kind::outside, 7} : walk::Found{walk::Kind::miss, 0};
+      return implicit.intersect(s, point.data()).hit ? walk::Found{walk::Kind::outside, 7}
+                                                     : walk::Found{walk::Kind::miss, 0};
     };
   };
   int compared = 0, guessed = 0;
@@ -216,7 +217,8 @@ TEST(Pivoting, PipelineAsksAsOtherTransverseFacet) {
         while (const Simplex* mu = cofacets.next()) {
           SCOPED_TRACE(std::to_string(mode) + " " + std::to_string(i));
           std::vector<std::uint32_t> asked_one, asked_pipeline;
-          const walk::Found one = walk::other_transverse_facet(oracle, pivots, tau, tau_key, arrival, *mu, classifier(asked_one));
+          const walk::Found one =
+              walk::other_transverse_facet(oracle, pivots, tau, tau_key, arrival, *mu, classifier(asked_one));
           walk::PendingCofacet p;
           walk::Found piped{walk::Kind::miss, 0};
           if (walk::take_cofacet(oracle, pivots, tau, tau_key, arrival, *mu, p)) {
