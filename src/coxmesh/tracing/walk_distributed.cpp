@@ -29,16 +29,8 @@ DistributedWalk::DistributedWalk(const Triangulation& t, IntersectionOracle& ora
       known_vertices_(d_),
       candidates_out_(ranks_),
       tested_out_(ranks_),
-      point_(d_) {}
-
-int DistributedWalk::owner_of(const Simplex& tau) {
-  // (the facets tested in a row mostly share their minimal vertex, hence its owner)
-  if (owner_of_y_ < 0 || std::memcmp(tau.y.data(), owner_y_, sizeof(std::int32_t) * d_) != 0) {
-    std::memcpy(owner_y_, tau.y.data(), sizeof(std::int32_t) * d_);
-    owner_of_y_ = owner_rank(tau.y.data(), d_, ranks_);
-  }
-  return owner_of_y_;
-}
+      point_(d_),
+      last_owner_(d_, ranks_) {}
 
 Found DistributedWalk::classify(const Simplex& tau) {
   std::uint32_t key[packed_words(kMaxDimension)];
@@ -49,7 +41,7 @@ Found DistributedWalk::classify(const Simplex& tau) {
 // As SequentialWalk::classify, with S split: this rank's part of S and of the next level are
 // looked up, then everything else it tested; only then is the oracle asked.
 Found DistributedWalk::classify(const Simplex& tau, const std::uint32_t* key, std::uint64_t h) {
-  const int owner = owner_of(tau);
+  const int owner = last_owner_.of(tau.y.data());
   Slots slots;  // (where the test below inserts τ, found by these look-ups)
   if (owner == rank_) {
     if (const std::uint32_t id = mine_.find(key, h); id != PackedKeyIndex::kAbsent) return {Kind::inside, id};
@@ -151,7 +143,7 @@ void DistributedWalk::walk_level() {
 
 // The slots where classify() will look the guess up.
 void DistributedWalk::fetch_slots(const PendingCofacet& p) {
-  if (owner_of(p.facet) == rank_) mine_.prefetch(p.hash), next_.prefetch(p.hash);
+  if (last_owner_.of(p.facet.y.data()) == rank_) mine_.prefetch(p.hash), next_.prefetch(p.hash);
   others_.prefetch(p.hash);
 }
 
