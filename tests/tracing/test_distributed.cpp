@@ -484,6 +484,29 @@ TEST(DistributedTopology, HandWrittenComplexesAsOneProcess) {
   }
 }
 
+// A complex whose edges all have two ends but with a 2-cell that is not closed (one of its edges
+// swapped for another): the same verdict and message, wherever the ranges cut it.
+TEST(DistributedTopology, CellsNotClosedAsOneProcess) {
+  for (const int m : {2, 4}) {
+    CellComplex cc = simplicial_complex(sphere_boundary(m, 0));
+    CellLevel& faces = cc.interior[2];
+    const std::span<const std::uint32_t> edges = faces.facets(0);
+    std::uint32_t other = 0;  // (an edge not of cell 0)
+    while (std::find(edges.begin(), edges.end(), other) != edges.end()) ++other;
+    faces.facet_ids[faces.facet_offsets[0]] = other;
+    const TopologyReport one = analyze_topology(cc);
+    SCOPED_TRACE(one.manifold_problem);
+    EXPECT_FALSE(one.closed);
+    EXPECT_NE(one.manifold_problem.find("is not closed"), std::string::npos);
+    for (int ranks : {1, 2, 3, 4}) {
+      SCOPED_TRACE(std::to_string(ranks) + " ranks");
+      std::vector<DistributedTopologyStats> stats;
+      for (const TopologyReport& split : topology_on_ranks(deal_out(cc, ranks), stats))
+        expect_same_topology(split, one);
+    }
+  }
+}
+
 TEST(DistributedTracing, IdenticalForEveryNumberOfRanks) {
   const std::vector<Case> cases = {
       {"S2 in R3", sphere(2, 3, 1.0), nullptr, Triangulation::coxeter(3).with_longest_edge(0.08), {}},

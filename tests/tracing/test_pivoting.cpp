@@ -7,6 +7,7 @@
 #include "coxmesh/lattice/faces.h"
 #include "coxmesh/oracle/implicit_oracle.h"
 #include "coxmesh/tracing/trace_manifold.h"
+#include "coxmesh/tracing/walk_common.h"
 #include "expect_identical.h"
 
 using namespace coxmesh;
@@ -166,4 +167,81 @@ TEST(Pivoting, GuessesAreRightThroughLatticeVertices) {
     // (Before the lexicographic ratio test: 40 of 72 and 96 of 300 wrong.)
     EXPECT_LE(wrong * 20, through_vertex) << wrong << " wrong of " << through_vertex;
   }
+}
+
+// The walks' pipeline (take_cofacet, guess_other_facet, classify_pending) asks the oracle and the
+// tables what other_transverse_facet asks, in the same order, and finds what it finds: for every
+// cofacet of every traced simplex, with the oracle's guesses, none, and wrong ones, each cofacet
+// once taken as τ's arrival.
+TEST(Pivoting, PipelineAsksAsOtherTransverseFacet) {
+  const Triangulation t = Triangulation::coxeter(4).with_longest_edge(0.3).rotated(9);
+  const FunctionPtr f = product(sphere(1, 2, 1.0), sphere(1, 2, 1.0));
+  ImplicitOracle traced_by(t, f);
+  TraceOptions options;
+  options.max_simplices = 400;
+  const TraceResult traced = trace_manifold(t, traced_by, {{-1, 0, 1, 0}}, options);
+  const int d = t.dimension(), k = f->codimension();
+  ImplicitOracle implicit(t, f);
+  std::vector<double> point(d);
+  // (inside: in S; outside, at index 7: transverse but not in S; else a miss)
+  const auto classifier = [&](std::vector<std::uint32_t>& asked) {
+    return [&](const Simplex& s) {
+      std::uint32_t key[packed_words(kMaxDimension)];
+      pack(s, key);
+      asked.insert(asked.end(), key, key + packed_words(d));
+      if (const std::uint32_t id = traced.simplices.find(key); id != PackedKeyIndex::kAbsent)
+        return walk::Found{walk::Kind::inside, id};
+      return implicit.intersect(s, point.data()).hit ? walk::Found{walk::Kind::outside, 7}
+                                                     : walk::Found{walk::Kind::miss, 0};
+    };
+  };
+  int compared = 0, guessed = 0;
+  for (int mode = 0; mode < 3; ++mode) {  // the oracle's guesses, none, wrong ones
+    GuessingOracle guessing(implicit, mode == 2);
+    IntersectionOracle& oracle = mode == 0 ? static_cast<IntersectionOracle&>(implicit) : guessing;
+    CofaceEnumerator cofacets;
+    for (std::uint32_t i = 0; i < traced.simplices.size(); ++i) {
+      const Simplex tau = unpack(traced.simplices.key(i), d);
+      const std::uint32_t* tau_key = traced.simplices.key(i);
+      for (int arrival_at = 0; arrival_at <= 1; ++arrival_at) {
+        std::uint64_t arrival = walk::kNoCofacet;
+        if (arrival_at) {  // (the first cofacet)
+          cofacets.reset(tau, k + 1);
+          const Simplex* mu = cofacets.next();
+          std::int32_t v[kMaxDimension];
+          mu->vertex(extra_vertex_index(tau, *mu), v);
+          arrival = walk::cofacet_code(v, tau_key, d);
+        }
+        const bool pivots = oracle.pivot_enter(tau);
+        cofacets.reset(tau, k + 1);
+        while (const Simplex* mu = cofacets.next()) {
+          SCOPED_TRACE(std::to_string(mode) + " " + std::to_string(i));
+          std::vector<std::uint32_t> asked_one, asked_pipeline;
+          const walk::Found one =
+              walk::other_transverse_facet(oracle, pivots, tau, tau_key, arrival, *mu, classifier(asked_one));
+          walk::PendingCofacet p;
+          walk::Found piped{walk::Kind::miss, 0};
+          if (walk::take_cofacet(oracle, pivots, tau, tau_key, arrival, *mu, p)) {
+            if (walk::guess_other_facet(oracle, pivots, p)) {
+              ++guessed;
+              std::uint32_t key[packed_words(kMaxDimension)];
+              pack(p.facet, key);
+              EXPECT_TRUE(std::equal(key, key + packed_words(d), p.key));
+              EXPECT_EQ(p.hash, hash_words(key, packed_words(d)));
+            }
+            const auto classify = classifier(asked_pipeline);
+            piped = walk::classify_pending(
+                p, [&](const Simplex& s, const std::uint32_t*, std::uint64_t) { return classify(s); }, classify);
+          }
+          EXPECT_EQ(asked_pipeline, asked_one);
+          EXPECT_EQ(piped.kind, one.kind);
+          EXPECT_EQ(piped.index, one.index);
+          EXPECT_EQ(piped.facet, one.facet);
+          ++compared;
+        }
+      }
+    }
+  }
+  EXPECT_GT(compared, 3 * 2 * 400 * 3);
+  EXPECT_GT(guessed, 400);
 }

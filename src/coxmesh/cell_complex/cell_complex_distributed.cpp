@@ -266,20 +266,16 @@ CellLevel next_level(const CellLevel& prev, const std::vector<std::uint32_t>& pr
   const double no_values = 0;  // (no extra values at this level)
   CofaceEnumerator cofaces;
   std::uint32_t key[packed_words(kMaxDimension)];
-  // The owner of the last minimal vertex: a cell's cofaces mostly share theirs (owner_rank hashes).
-  std::uint32_t last_y[kMaxDimension];
-  int last_owner = -1;
+  LastOwner last_owner(d, ranks);  // (a cell's cofaces mostly share their minimal vertex)
   agreed(comm, [&] {
     for (std::uint32_t c = 0; c < prev.size(); ++c) {
       std::uint64_t discovery = std::uint64_t{prev_ids[c]} << 32;
       cofaces.reset(prev.simplices.simplex(c, d), l);
       while (const Simplex* nu = cofaces.next()) {
         pack(*nu, key);
-        if (last_owner < 0 || std::memcmp(key, last_y, sizeof(std::uint32_t) * d) != 0) {
-          std::memcpy(last_y, key, sizeof(std::uint32_t) * d);
-          last_owner = owner_of(key, d, ranks);
-        }
-        arrivals.send(out, last_owner, comm.rank(), key, discovery++, &no_values);
+        // (y, the minimal vertex, first in the key)
+        arrivals.send(out, last_owner.of(reinterpret_cast<const std::int32_t*>(key)), comm.rank(), key, discovery++,
+                      &no_values);
       }
     }
   });

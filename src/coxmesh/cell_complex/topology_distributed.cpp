@@ -1,7 +1,7 @@
 // The topology of a complex split between ranks, without gathering it (topology_distributed.h). The
-// Betti numbers follow betti_shrink.cpp: collapses and coreductions delete pairs (a, b), a a facet
-// of b, when b has no other remaining facet or a no other remaining coface; either keeps the
-// homology, and what remains is the restriction of the boundary matrix. A rank deletes only pairs
+// Betti numbers are found as in one process (betti_shrink.cpp), with collapses beside the
+// coreductions: pairs (a, b), a a facet of b, are deleted when b has no other remaining facet or a
+// no other remaining coface; either keeps the homology, and what remains is the restriction of the boundary matrix. A rank deletes only pairs
 // of its own cells and counts every cell of another rank as remaining: its counts are never below
 // the true ones, so a count of 1 whose one cell is its own is exact, and since a deletion elsewhere
 // only lowers counts, a pair that qualifies here still does whatever the other ranks delete.
@@ -222,32 +222,22 @@ void sort_unique(std::vector<std::uint32_t>& v) {
   v.erase(std::unique(v.begin(), v.end()), v.end());
 }
 
-// Collapses and coreductions (Mrozek and Batko; see betti_shrink.cpp) over cells 0..n−1 in dimension order (n + 1
-// offsets), whose facet lists hold local indices or, with kRemote, cells of another rank, which
-// count as never removed. Cells from `cut_first` on are the top dimension of a skeleton whose own
+// Collapses and coreductions (Mrozek and Batko; see betti_shrink.cpp) from a queue of the cells
+// whose count came down to one, over cells 0..n−1 in dimension order (n + 1 offsets), whose facet
+// lists hold local indices or, with kRemote, cells of another rank, which count as never removed. Cells from `cut_first` on are the top dimension of a skeleton whose own
 // homology in that dimension is not wanted: one that is a cycle is removed alone.
 class PairReducer {
  public:
   PairReducer(std::span<const std::uint32_t> offsets, const std::vector<std::uint32_t>& facets,
               std::span<const std::uint32_t> remote_cofaces, std::uint32_t cut_first)
-      : offsets_(offsets),
-        facets_(facets),
-        cut_first_(cut_first),
-        cell_(offsets.size() - 1),
-        pinned_(offsets.size() - 1, 0) {
+      : offsets_(offsets), facets_(facets), cut_first_(cut_first), cell_(offsets.size() - 1) {
     const std::uint32_t n = static_cast<std::uint32_t>(cell_.size());
-    for (std::uint32_t a = 0; a < n; ++a) {
-      if (!remote_cofaces.empty() && remote_cofaces[a] > 0) pinned_[a] |= kPinnedUp;
-      for (std::uint32_t i = offsets_[a]; i < offsets_[a + 1]; ++i) {
-        const std::uint32_t f = facets_[i];
-        if (f & kRemote) {
-          pinned_[a] |= kPinnedDown;
-          continue;
+    for (std::uint32_t a = 0; a < n; ++a)
+      for (std::uint32_t i = offsets_[a]; i < offsets_[a + 1]; ++i)
+        if (const std::uint32_t f = facets_[i]; !(f & kRemote)) {
+          ++cell_[a].down, cell_[a].xdown ^= f;
+          ++cell_[f].up, cell_[f].xup ^= a;
         }
-        ++cell_[a].down, cell_[a].xdown ^= f;
-        ++cell_[f].up, cell_[f].xup ^= a;
-      }
-    }
     coface_start_.assign(n + 1, 0);
     std::uint64_t total = 0;
     for (std::uint32_t a = 0; a < n; ++a) {
@@ -260,12 +250,20 @@ class PairReducer {
     for (std::uint32_t a = n; a-- > 0;)
       for (std::uint32_t i = offsets_[a]; i < offsets_[a + 1]; ++i)
         if (!(facets_[i] & kRemote)) coface_ids_[--coface_start_[facets_[i]]] = a;
+    // A facet or coface on another rank counts twice in its count: never removed, so the count
+    // never comes down to the one or none that frees a cell (no separate array of such cells to
+    // read beside the counts).
+    for (std::uint32_t a = 0; a < n; ++a) {
+      for (std::uint32_t i = offsets_[a]; i < offsets_[a + 1]; ++i)
+        if (facets_[i] & kRemote) cell_[a].down += kPin;
+      if (!remote_cofaces.empty() && remote_cofaces[a] > 0) cell_[a].up += kPin;
+    }
     for (std::uint32_t a = 0; a < n; ++a)
-      if (free_down(a) || free_up(a) || cut_cycle(a)) pending_.push_back(a);
+      if (cell_[a].down == 1 || cell_[a].up == 1 || cut_cycle(a)) pending_.push_back(a);
   }
 
   // Removes a vertex whose class is accounted for elsewhere (one per component).
-  void remove_vertex(std::uint32_t v) { remove(v); }
+  void remove_vertex(std::uint32_t v) { remove(v, false, true); }
 
   void reduce() {
     for (std::size_t head = 0; head < pending_.size(); ++head) {
@@ -273,16 +271,22 @@ class PairReducer {
         pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(head));
         head = 0;
       }
+      fetch_ahead(head);
       const std::uint32_t a = pending_[head];
-      if (removed(a)) continue;
-      if (free_down(a)) {  // (coreductions first: collapses alone stall on 3-manifolds)
-        const std::uint32_t b = cell_[a].xdown;
-        remove(a), remove(b);
-      } else if (free_up(a)) {
-        const std::uint32_t b = cell_[a].xup;
-        remove(a), remove(b);
-      } else if (cut_cycle(a)) {  // (as betti_shrink.cpp: it changes only the skeleton's own H_top)
-        remove(a);
+      const Counts& ca = cell_[a];
+      if (ca.up == kRemoved) continue;
+      // Coreductions first (collapses alone stall on 3-manifolds), and a pair's cells removed
+      // without visiting the other cell of the pair.
+      if (ca.down == 1) {
+        const std::uint32_t b = ca.xdown;
+        remove(a, false, ca.up != 0);
+        remove(b, cell_[b].down != 0, true);
+      } else if (ca.up == 1) {
+        const std::uint32_t b = ca.xup;
+        remove(a, ca.down != 0, false);
+        remove(b, true, cell_[b].up != 0);
+      } else if (cut_cycle(a)) {  // (it changes only the skeleton's own H_top)
+        remove(a, false, ca.up != 0);
       }
     }
     pending_ = {};
@@ -293,37 +297,82 @@ class PairReducer {
 
  private:
   static constexpr std::uint32_t kRemoved = 0xFFFFFFFFu;
-  static constexpr std::uint8_t kPinnedDown = 1, kPinnedUp = 2;  // (a facet, a coface elsewhere)
+  static constexpr std::uint32_t kPin = 2;
   static constexpr std::size_t kCompactAt = 1 << 16;
+  static constexpr std::size_t kAhead = 16;
 
-  bool free_down(std::uint32_t a) const { return cell_[a].down == 1 && !(pinned_[a] & kPinnedDown); }
-  bool free_up(std::uint32_t a) const { return cell_[a].up == 1 && !(pinned_[a] & kPinnedUp); }
-  bool cut_cycle(std::uint32_t a) const { return a >= cut_first_ && cell_[a].down == 0 && !(pinned_[a] & kPinnedDown); }
+  bool cut_cycle(std::uint32_t a) const { return a >= cut_first_ && cell_[a].down == 0; }
 
-  void remove(std::uint32_t x) {
-    cell_[x].up = kRemoved, ++removed_count_;
-    for (std::uint32_t i = offsets_[x]; i < offsets_[x + 1]; ++i) {
-      const std::uint32_t f = facets_[i];
-      if ((f & kRemote) || removed(f)) continue;
-      cell_[f].xup ^= x;
-      if (--cell_[f].up == 1 && free_up(f)) pending_.push_back(f);
+  // The queue's cells are scattered over arrays far larger than the cache: their counts and lists
+  // are fetched ahead in stages.
+  void fetch_ahead(std::size_t head) const {
+    if (head + 2 * kAhead < pending_.size()) {
+      const std::uint32_t f = pending_[head + 2 * kAhead];
+      __builtin_prefetch(&cell_[f]);
+      __builtin_prefetch(&offsets_[f]);
+      __builtin_prefetch(&coface_start_[f]);
     }
-    for (std::uint32_t i = coface_start_[x]; i < coface_start_[x + 1]; ++i) {
-      const std::uint32_t y = coface_ids_[i];
-      if (removed(y)) continue;
-      cell_[y].xdown ^= x;
-      if (--cell_[y].down <= 1 && (free_down(y) || cut_cycle(y))) pending_.push_back(y);
+    if (head + kAhead < pending_.size()) {
+      const std::uint32_t f = pending_[head + kAhead];
+      if (!removed(f)) {
+        __builtin_prefetch(&facets_[offsets_[f]]);
+        __builtin_prefetch(coface_ids_.data() + coface_start_[f]);
+      }
+    }
+    if (head + kAhead / 2 < pending_.size()) {  // (the other cell of its pair, if any)
+      const Counts& cf = cell_[pending_[head + kAhead / 2]];
+      if (cf.up != kRemoved && (cf.down == 1 || cf.up == 1)) {
+        const std::uint32_t b = cf.down == 1 ? cf.xdown : cf.xup;
+        __builtin_prefetch(&cell_[b]);
+        __builtin_prefetch(&offsets_[b]);
+        __builtin_prefetch(&coface_start_[b]);
+      }
+    }
+    if (head + kAhead * 3 / 8 < pending_.size()) {  // (its lists)
+      const Counts& cf = cell_[pending_[head + kAhead * 3 / 8]];
+      if (cf.up != kRemoved && (cf.down == 1 || cf.up == 1)) {
+        const std::uint32_t b = cf.down == 1 ? cf.xdown : cf.xup;
+        __builtin_prefetch(&facets_[offsets_[b]]);
+        __builtin_prefetch(coface_ids_.data() + coface_start_[b]);
+      }
+    }
+    if (head + kAhead / 4 < pending_.size()) {  // (the cofaces of a coreduction's facet)
+      const Counts& cf = cell_[pending_[head + kAhead / 4]];
+      if (cf.up != kRemoved && cf.down == 1)
+        for (std::uint32_t i = coface_start_[cf.xdown]; i < coface_start_[cf.xdown + 1]; ++i)
+          __builtin_prefetch(&cell_[coface_ids_[i]]);
     }
   }
 
+  // (visit_...: false when every remaining local facet or coface is the other cell of the pair,
+  // removed next, or none remains)
+  void remove(std::uint32_t x, bool visit_facets, bool visit_cofaces) {
+    cell_[x].up = kRemoved, ++removed_count_;
+    if (visit_facets)
+      for (std::uint32_t i = offsets_[x]; i < offsets_[x + 1]; ++i) {
+        const std::uint32_t f = facets_[i];
+        if ((f & kRemote) || removed(f)) continue;
+        cell_[f].xup ^= x;
+        if (--cell_[f].up == 1) pending_.push_back(f);
+      }
+    if (visit_cofaces)
+      for (std::uint32_t i = coface_start_[x]; i < coface_start_[x + 1]; ++i) {
+        const std::uint32_t y = coface_ids_[i];
+        if (removed(y)) continue;
+        cell_[y].xdown ^= x;
+        if (--cell_[y].down <= 1 && (cell_[y].down == 1 || y >= cut_first_)) pending_.push_back(y);
+      }
+  }
+
   struct Counts {
-    std::uint32_t down = 0, up = 0, xdown = 0, xup = 0;  // remaining local facets and cofaces
+    // remaining local facets and cofaces (+ kPin if any is on another rank), and the xor of the
+    // local ones' ids
+    std::uint32_t down = 0, up = 0, xdown = 0, xup = 0;
   };
   std::span<const std::uint32_t> offsets_;
   const std::vector<std::uint32_t>& facets_;
   std::uint32_t cut_first_;
-  std::vector<Counts> cell_;
-  std::vector<std::uint8_t> pinned_;
+  std::vector<Counts> cell_;  // (one cache line holds all four)
   std::vector<std::uint32_t> coface_start_, coface_ids_, pending_;
   std::size_t removed_count_ = 0;
 };
@@ -604,7 +653,13 @@ TopologyReport analyze_topology_distributed(CellComplexPart&& part, Communicator
         const auto it = std::lower_bound(ghost.begin(), ghost.end(), std::make_pair(g, std::uint32_t{0}));
         return {words.data() + it->second + 1, words[it->second]};
       };
+      // As topology.cpp: per ridge (by global id) the parity of its count so far, the ridges met
+      // listed to clear it again (no sort per cell).
+      std::vector<std::uint8_t> odd(layout.total(), 0);
       std::vector<std::uint32_t> ridges;
+      const auto toggle = [&](std::uint32_t e) {
+        if ((odd[e] ^= 1)) ridges.push_back(e);
+      };
       for (int l = 2; l < layout.levels(); ++l) {
         const int j = l / 2;
         const bool boundary = l % 2 == 1;
@@ -621,11 +676,10 @@ TopologyReport analyze_topology_distributed(CellComplexPart&& part, Communicator
           } else {
             ridges.clear();
             for (std::uint32_t f : facets)
-              for (std::uint32_t e : facets_of(f, l - 2)) ridges.push_back(e);
-            std::sort(ridges.begin(), ridges.end());
-            for (std::size_t k = 0; k < ridges.size() && why.empty(); k += 2)
-              if (k + 1 == ridges.size() || ridges[k] != ridges[k + 1])
-                why = "a " + std::to_string(j) + "-cell is not closed (a face of its boundary is not shared)";
+              for (std::uint32_t e : facets_of(f, l - 2)) toggle(e);
+            bool closed = true;
+            for (std::uint32_t e : ridges) closed &= odd[e] == 0, odd[e] = 0;
+            if (!closed) why = "a " + std::to_string(j) + "-cell is not closed (a face of its boundary is not shared)";
           }
           if (!why.empty()) {  // (the first of this level here; a level before it in the order may fail too)
             const std::uint64_t k = check_order(l, layout.lo(l) + (i - layout.local_start[l]));

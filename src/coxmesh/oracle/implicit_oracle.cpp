@@ -210,11 +210,15 @@ Intersection ImplicitOracle::intersect(const Simplex& tau, double* point) {
 
 // values_at(v)'s reads: its slot of the recent vertices, and its slot in the big table.
 void ImplicitOracle::prefetch_pivot(const std::int32_t* v) {
-  if (!cache_enabled_ || shared_) return;
+  if (!cache_enabled_) return;
   const std::size_t slot = front_slot(v);
   __builtin_prefetch(front_keys_.data() + slot * d_);
   __builtin_prefetch(front_values_.data() + slot * stride_);
-  if (cache_.indexed()) cache_.prefetch(hash_words(reinterpret_cast<const std::uint32_t*>(v), d_));
+  const std::uint64_t h = hash_words(reinterpret_cast<const std::uint32_t*>(v), d_);
+  if (shared_)
+    shared_->prefetch(h);
+  else if (cache_.indexed())
+    cache_.prefetch(h);
 }
 
 // Door-in/door-out: on μ = τ ∪ {v}, the points of M̂ are λ(t) = (λ_τ − t·w, t) with M(τ)·w = (1, F(v)),

@@ -83,6 +83,12 @@ class SharedVertexValues {
     return true;
   }
 
+  /// A hint: get(v, hash) follows soon (its slot is loaded into the cache).
+  void prefetch(std::uint64_t hash) const {
+    const Table* t = table_.load(std::memory_order_acquire);
+    __builtin_prefetch(&t->slots[t->probe.home(LinearProbe::tag_of(hash))]);
+  }
+
  private:
   // (32 shards: growing holds every shard's lock and the growth lock, and ThreadSanitizer follows at
   // most 64 locks held at once)

@@ -70,6 +70,55 @@ Found other_transverse_facet(IntersectionOracle& oracle, bool pivots, const Simp
   return {Kind::miss, 0};
 }
 
+// A cofacet μ of τ in the walks' pipeline of three steps (SequentialWalk::walk says why): taken,
+// then its other transverse facet guessed by the oracle (packed and hashed, so that the caller can
+// fetch the facet's slots), then classified. The oracle and the tables are asked the same things in
+// the same order as by other_transverse_facet.
+struct PendingCofacet {
+  Simplex mu, facet;  // (facet: μ without its vertex `guess`, when guess ≥ 0)
+  int entry = 0, guess = -1;
+  std::uint32_t index = 0;        // μ's place among τ's cofacets
+  std::int32_t v[kMaxDimension];  // μ's vertex `entry`, not in τ
+  std::uint32_t key[packed_words(kMaxDimension)];
+  std::uint64_t hash = 0;
+};
+
+// First step: false when μ is τ's arrival (see other_transverse_facet).
+inline bool take_cofacet(IntersectionOracle& oracle, bool pivots, const Simplex& tau, const std::uint32_t* tau_key,
+                         std::uint64_t arrival, const Simplex& mu, PendingCofacet& p) {
+  p.entry = extra_vertex_index(tau, mu);
+  mu.vertex(p.entry, p.v);
+  if (arrival != kNoCofacet && cofacet_code(p.v, tau_key, tau.d) == arrival) return false;
+  p.mu = mu;
+  if (pivots) oracle.prefetch_pivot(p.v);
+  return true;
+}
+
+// Second step: false when the oracle makes no guess.
+inline bool guess_other_facet(IntersectionOracle& oracle, bool pivots, PendingCofacet& p) {
+  p.guess = -1;
+  if (!pivots) return false;
+  const int g = oracle.pivot_exit(p.v);
+  if (g < 0) return false;
+  p.guess = g < p.entry ? g : g + 1;
+  p.facet = facet_without(p.mu, p.guess);
+  pack(p.facet, p.key);
+  p.hash = hash_words(p.key, packed_words(p.mu.d));
+  return true;
+}
+
+// Last step: the guess tested (`classify_keyed(facet, key, hash)`), then every other facet
+// (`classify(facet)`), as other_transverse_facet.
+template <class ClassifyKeyed, class Classify>
+Found classify_pending(const PendingCofacet& p, ClassifyKeyed&& classify_keyed, Classify&& classify) {
+  if (p.guess >= 0)
+    if (Found f = classify_keyed(p.facet, p.key, p.hash); f.kind != Kind::miss) return f.facet = p.guess, f;
+  for (int j = 0; j <= p.mu.k; ++j)
+    if (j != p.entry && j != p.guess)
+      if (Found f = classify(facet_without(p.mu, j)); f.kind != Kind::miss) return f.facet = j, f;
+  return {Kind::miss, 0};
+}
+
 // A cofacet μ with one transverse facet inside the domain (point p, D̂ = dp < 0) and one outside
 // (q[0..d), D̂ = q[d] ≥ 0): μ ∩ M̂ is the segment pq and D̂ is linear on it, so μ ∩ M̂ ∩ ∂D̂ is the
 // point where D̂ crosses 0. Appends its d coordinates to `out`.

@@ -29,20 +29,19 @@ DistributedWalk::DistributedWalk(const Triangulation& t, IntersectionOracle& ora
       known_vertices_(d_),
       candidates_out_(ranks_),
       tested_out_(ranks_),
-      point_(d_) {}
+      point_(d_),
+      last_owner_(d_, ranks_) {}
 
-// As SequentialWalk::classify, with S split: this rank's part of S and of the next level are
-// looked up, then everything else it tested; only then is the oracle asked.
 Found DistributedWalk::classify(const Simplex& tau) {
   std::uint32_t key[packed_words(kMaxDimension)];
   pack(tau, key);
-  const std::uint64_t h = hash_words(key, words_);
-  // (the facets tested in a row mostly share their minimal vertex, hence its owner)
-  if (owner_of_y_ < 0 || std::memcmp(tau.y.data(), owner_y_, sizeof(std::int32_t) * d_) != 0) {
-    std::memcpy(owner_y_, tau.y.data(), sizeof(std::int32_t) * d_);
-    owner_of_y_ = owner_rank(tau.y.data(), d_, ranks_);
-  }
-  const int owner = owner_of_y_;
+  return classify(tau, key, hash_words(key, words_));
+}
+
+// As SequentialWalk::classify, with S split: this rank's part of S and of the next level are
+// looked up, then everything else it tested; only then is the oracle asked.
+Found DistributedWalk::classify(const Simplex& tau, const std::uint32_t* key, std::uint64_t h) {
+  const int owner = last_owner_.of(tau.y.data());
   Slots slots;  // (where the test below inserts τ, found by these look-ups)
   if (owner == rank_) {
     if (const std::uint32_t id = mine_.find(key, h); id != PackedKeyIndex::kAbsent) return {Kind::inside, id};
@@ -114,32 +113,56 @@ void DistributedWalk::set_fresh_arrival(std::uint64_t arrival) {
   if (fresh_ == Fresh::remote) std::memcpy(candidates_out_[fresh_owner_].data() + fresh_at_, &arrival, sizeof arrival);
 }
 
-// SequentialWalk::walk on this rank's part of one level, in the order of their global ids.
+// SequentialWalk::walk on this rank's part of one level, in the order of their global ids, with
+// its pipeline: the tables here are as far beyond the caches as S is there.
 void DistributedWalk::walk_level() {
   Simplex tau;
   CofaceEnumerator cofacets;
+  constexpr int kGuessLag = 1, kTestLag = 2, kRing = kGuessLag + kTestLag + 1;
+  PendingCofacet pending[kRing];
   for (std::uint32_t i = level_begin_; i < level_end_; ++i) {
     tau = mine_.simplex(i, d_);
     const bool pivots = oracle_.pivot_enter(tau);
     cofacets.reset(tau, k_ + 1);
-    std::uint32_t cofacet_index = 0;
+    int taken = 0, guessed = 0, finished = 0;  // pending[j % kRing] for finished ≤ j < taken
+    const auto advance = [&](int guess_lag, int test_lag) {
+      if (taken - guessed > guess_lag)
+        if (PendingCofacet& p = pending[guessed++ % kRing]; guess_other_facet(oracle_, pivots, p)) fetch_slots(p);
+      if (guessed - finished > test_lag) finish_cofacet(i, pending[finished++ % kRing]);
+    };
+    std::uint32_t index = 0;
     while (const Simplex* cofacet = cofacets.next()) {
-      const Simplex& mu = *cofacet;
-      discovery_ = std::uint64_t{global_ids_[i]} << 32 | cofacet_index++;
-      fresh_ = Fresh::no;
-      const Found f = other_transverse_facet(oracle_, pivots, tau, mine_.key(i), arrivals_[i], mu,
-                                             [this](const Simplex& s) { return classify(s); });
-      if (f.kind == Kind::outside) {
-        std::uint32_t key[packed_words(kMaxDimension)];
-        pack(mu, key);
-        boundary_keys_.push_back(discovery_);
-        boundary_simplices_.insert(boundary_simplices_.end(), key, key + words_);
-        append_boundary_point(boundary_points_, points_.data() + static_cast<std::size_t>(i) * d_, domain_values_[i],
-                              outside_.data() + f.index, d_);
-      } else if (f.kind == Kind::inside && fresh_ != Fresh::no) {
-        set_fresh_arrival(arrival_code(mu, f.facet, fresh_key_, d_));
-      }
+      PendingCofacet& p = pending[taken % kRing];
+      p.index = index++;
+      if (take_cofacet(oracle_, pivots, tau, mine_.key(i), arrivals_[i], *cofacet, p))
+        ++taken, advance(kGuessLag, kTestLag);
     }
+    while (finished < taken) advance(0, 0);
+  }
+}
+
+// The slots where classify() will look the guess up.
+void DistributedWalk::fetch_slots(const PendingCofacet& p) {
+  if (last_owner_.of(p.facet.y.data()) == rank_) mine_.prefetch(p.hash), next_.prefetch(p.hash);
+  others_.prefetch(p.hash);
+}
+
+void DistributedWalk::finish_cofacet(std::uint32_t i, const PendingCofacet& p) {
+  const Simplex& mu = p.mu;
+  discovery_ = std::uint64_t{global_ids_[i]} << 32 | p.index;
+  fresh_ = Fresh::no;
+  const Found f = classify_pending(
+      p, [this](const Simplex& s, const std::uint32_t* key, std::uint64_t h) { return classify(s, key, h); },
+      [this](const Simplex& s) { return classify(s); });
+  if (f.kind == Kind::outside) {
+    std::uint32_t key[packed_words(kMaxDimension)];
+    pack(mu, key);
+    boundary_keys_.push_back(discovery_);
+    boundary_simplices_.insert(boundary_simplices_.end(), key, key + words_);
+    append_boundary_point(boundary_points_, points_.data() + static_cast<std::size_t>(i) * d_, domain_values_[i],
+                          outside_.data() + f.index, d_);
+  } else if (f.kind == Kind::inside && fresh_ != Fresh::no) {
+    set_fresh_arrival(arrival_code(mu, f.facet, fresh_key_, d_));
   }
 }
 

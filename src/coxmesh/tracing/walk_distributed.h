@@ -46,6 +46,9 @@ class DistributedWalk {
     std::size_t next = 0, others = 0;
   };
   Found classify(const Simplex& tau);
+  Found classify(const Simplex& tau, const std::uint32_t* key, std::uint64_t hash);  // key packed, hash_words
+  void fetch_slots(const PendingCofacet& p);
+  void finish_cofacet(std::uint32_t i, const PendingCofacet& p);
   Found test(const std::uint32_t* key, std::uint64_t hash, const Simplex& tau, int owner, std::uint32_t known,
              const Slots& slots);
   void set_fresh_arrival(std::uint64_t arrival);
@@ -101,8 +104,7 @@ class DistributedWalk {
   std::size_t fresh_at_ = 0;  // where its arrival code goes (next_ id, or byte offset in candidates_out_)
   std::uint32_t fresh_key_[packed_words(kMaxDimension)];
   std::vector<double> point_;
-  std::int32_t owner_y_[kMaxDimension] = {};  // the minimal vertex classify() last met, and its owner
-  int owner_of_y_ = -1;
+  LastOwner last_owner_;  // (of a tested simplex's minimal vertex)
   std::uint64_t calls_ = 0, tests_ = 0, evaluations_ = 0, vertex_values_sent_ = 0, candidates_sent_ = 0, levels_ = 0;
   std::size_t last_progress_ = 0;
   bool stopped_ = false;

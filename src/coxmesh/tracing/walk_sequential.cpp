@@ -39,7 +39,7 @@ void SequentialWalk::walk() {
   // of v, a vertex of every facet tested after it). Both look-ups are at random places of tables
   // much bigger than the caches: fetched ahead, they wait less (docs/benchmarks.md).
   constexpr int kGuessLag = 1, kTestLag = 2, kRing = kGuessLag + kTestLag + 1;
-  Pending pending[kRing];
+  PendingCofacet pending[kRing];
   for (; head_ < result_.simplices.size(); ++head_) {
     if (head_ >= level_end_) {  // a breadth-first level starts: handed to the oracle at once
       if (!start_level()) return;
@@ -50,49 +50,26 @@ void SequentialWalk::walk() {
     cofacets.reset(tau, k_ + 1);
     int taken = 0, guessed = 0, finished = 0;  // pending[i % kRing] for finished ≤ i < taken
     const auto advance = [&](int guess_lag, int test_lag) {
-      if (taken - guessed > guess_lag) guess_other_facet(pivots, pending[guessed++ % kRing]);
+      if (taken - guessed > guess_lag)
+        if (PendingCofacet& p = pending[guessed++ % kRing]; guess_other_facet(oracle_, pivots, p))
+          result_.simplices.prefetch(p.hash);  // (its slot in S)
       if (guessed - finished > test_lag) finish_cofacet(pending[finished++ % kRing]);
     };
+    // (τ's key is read per cofacet: classify appends to S, which may move the keys)
     while (const Simplex* cofacet = cofacets.next())
-      if (take_cofacet(tau, *cofacet, pivots, pending[taken % kRing])) ++taken, advance(kGuessLag, kTestLag);
+      if (take_cofacet(oracle_, pivots, tau, result_.simplices.key(head_), arrivals_[head_], *cofacet,
+                       pending[taken % kRing]))
+        ++taken, advance(kGuessLag, kTestLag);
     while (finished < taken) advance(0, 0);
   }
 }
 
-// other_transverse_facet (walk_common.h), first step: false when μ is τ's arrival.
-bool SequentialWalk::take_cofacet(const Simplex& tau, const Simplex& mu, bool pivots, Pending& p) {
-  p.entry = extra_vertex_index(tau, mu);
-  mu.vertex(p.entry, p.v);
-  // (τ's key is fetched per cofacet: classify appends to S, which may move the keys)
-  const std::uint64_t arrival = arrivals_[head_];
-  if (arrival != kNoCofacet && cofacet_code(p.v, result_.simplices.key(head_), d_) == arrival) return false;
-  p.mu = mu;
-  if (pivots) oracle_.prefetch_pivot(p.v);
-  return true;
-}
-
-// Second step: the oracle's guess, packed and hashed, its slot in S fetched.
-void SequentialWalk::guess_other_facet(bool pivots, Pending& p) {
-  p.guess = -1;
-  if (!pivots) return;
-  if (const int g = oracle_.pivot_exit(p.v); g >= 0) {
-    p.guess = g < p.entry ? g : g + 1;
-    p.facet = facet_without(p.mu, p.guess);
-    pack(p.facet, p.key);
-    p.hash = hash_words(p.key, packed_words(d_));
-    result_.simplices.prefetch(p.hash);
-  }
-}
-
 // Last step: the guess tested, then every other facet, then what the walk does with the one found.
-void SequentialWalk::finish_cofacet(const Pending& p) {
+void SequentialWalk::finish_cofacet(const PendingCofacet& p) {
   const std::uint32_t known = result_.simplices.size();
-  Found f{Kind::miss, 0};
-  if (p.guess >= 0)
-    if (f = classify(p.facet, p.key, p.hash); f.kind != Kind::miss) f.facet = p.guess;
-  for (int j = 0; f.kind == Kind::miss && j <= p.mu.k; ++j)
-    if (j != p.entry && j != p.guess)
-      if (f = classify(facet_without(p.mu, j)); f.kind != Kind::miss) f.facet = j;
+  const Found f = classify_pending(
+      p, [this](const Simplex& s, const std::uint32_t* key, std::uint64_t h) { return classify(s, key, h); },
+      [this](const Simplex& s) { return classify(s); });
   if (f.kind == Kind::miss) return;
   if (f.kind == Kind::outside) add_boundary(p.mu, head_, outside_.data() + f.index);
   if (f.kind == Kind::inside && f.index >= known)  // discovered now, through μ

@@ -37,17 +37,7 @@ class SequentialWalk {
  private:
   friend class ParallelWalk;  // the level-synchronous variant: appends to S itself
 
-  // A cofacet μ of τ in the walk's pipeline (walk_sequential.cpp).
-  struct Pending {
-    Simplex mu, facet;  // (facet: μ without its vertex `guess`, when guess ≥ 0)
-    int entry = 0, guess = -1;
-    std::int32_t v[kMaxDimension];  // μ's vertex `entry`, not in τ
-    std::uint32_t key[packed_words(kMaxDimension)];
-    std::uint64_t hash = 0;
-  };
-  bool take_cofacet(const Simplex& tau, const Simplex& mu, bool pivots, Pending& p);
-  void guess_other_facet(bool pivots, Pending& p);
-  void finish_cofacet(const Pending& p);
+  void finish_cofacet(const PendingCofacet& p);
 
   Found classify(const Simplex& tau);
   Found classify(const Simplex& tau, const std::uint32_t* key, std::uint64_t hash);  // key packed, hash_words
