@@ -1,10 +1,11 @@
 // The topology of a complex split between ranks, without gathering it (topology_distributed.h). The
 // Betti numbers are found as in one process (betti_shrink.cpp), with collapses beside the
 // coreductions: pairs (a, b), a a facet of b, are deleted when b has no other remaining facet or a
-// no other remaining coface; either keeps the homology, and what remains is the restriction of the boundary matrix. A rank deletes only pairs
-// of its own cells and counts every cell of another rank as remaining: its counts are never below
-// the true ones, so a count of 1 whose one cell is its own is exact, and since a deletion elsewhere
-// only lowers counts, a pair that qualifies here still does whatever the other ranks delete.
+// no other remaining coface; either keeps the homology, and what remains is the restriction of the
+// boundary matrix. A rank deletes only pairs of its own cells and counts every cell of another rank
+// as remaining: its counts are never below the true ones, so a count of 1 whose one cell is its own
+// is exact, and since a deletion elsewhere only lowers counts, a pair that qualifies here still
+// does whatever the other ranks delete.
 #include "coxmesh/cell_complex/topology_distributed.h"
 
 #include <algorithm>
@@ -224,8 +225,9 @@ void sort_unique(std::vector<std::uint32_t>& v) {
 
 // Collapses and coreductions (Mrozek and Batko; see betti_shrink.cpp) from a queue of the cells
 // whose count came down to one, over cells 0..n−1 in dimension order (n + 1 offsets), whose facet
-// lists hold local indices or, with kRemote, cells of another rank, which count as never removed. Cells from `cut_first` on are the top dimension of a skeleton whose own
-// homology in that dimension is not wanted: one that is a cycle is removed alone.
+// lists hold local indices or, with kRemote, cells of another rank, which count as never removed. Cells from
+// `cut_first` on are the top dimension of a skeleton whose own homology in that dimension is not wanted: one that is a
+// cycle is removed alone.
 class PairReducer {
  public:
   PairReducer(std::span<const std::uint32_t> offsets, const std::vector<std::uint32_t>& facets,
@@ -653,8 +655,8 @@ TopologyReport analyze_topology_distributed(CellComplexPart&& part, Communicator
         const auto it = std::lower_bound(ghost.begin(), ghost.end(), std::make_pair(g, std::uint32_t{0}));
         return {words.data() + it->second + 1, words[it->second]};
       };
-      // As topology.cpp: per ridge (by global id) the parity of its count so far, the ridges met
-      // listed to clear it again (no sort per cell).
+      // Per ridge (by global id) the parity of its count so far, the ridges met listed to clear it
+      // again (no sort per cell): exact, where one process compares fingerprints (topology.cpp).
       std::vector<std::uint8_t> odd(layout.total(), 0);
       std::vector<std::uint32_t> ridges;
       const auto toggle = [&](std::uint32_t e) {
