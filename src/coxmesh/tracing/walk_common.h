@@ -6,6 +6,7 @@
 
 #include <cstdint>
 
+#include "coxmesh/lattice/cofaces.h"
 #include "coxmesh/lattice/faces.h"
 #include "coxmesh/lattice/simplex.h"
 #include "coxmesh/oracle/intersection_oracle.h"
@@ -118,6 +119,33 @@ Found classify_pending(const PendingCofacet& p, ClassifyKeyed&& classify_keyed, 
       if (Found f = classify(facet_without(p.mu, j)); f.kind != Kind::miss) return f.facet = j, f;
   return {Kind::miss, 0};
 }
+
+// Drives the cofacets of one τ through the three steps above, each cofacet guessed one cofacet after
+// it is taken and classified two after that (SequentialWalk::walk says why): take(μ, p) → bool (as
+// take_cofacet), guess(p), finish(p). Kept by the walk across its simplices: the ring of pending
+// cofacets is not built again per τ.
+class CofacetPipeline {
+ public:
+  template <class Take, class Guess, class Finish>
+  void run(CofaceEnumerator& cofacets, Take&& take, Guess&& guess, Finish&& finish) {
+    int taken = 0, guessed = 0, finished = 0;  // ring_[i % kRing] for finished ≤ i < taken
+    const auto advance = [&](int guess_lag, int test_lag) {
+      if (taken - guessed > guess_lag) guess(ring_[guessed++ % kRing]);
+      if (guessed - finished > test_lag) finish(ring_[finished++ % kRing]);
+    };
+    std::uint32_t index = 0;
+    while (const Simplex* mu = cofacets.next()) {
+      PendingCofacet& p = ring_[taken % kRing];
+      p.index = index++;
+      if (take(*mu, p)) ++taken, advance(kGuessLag, kTestLag);
+    }
+    while (finished < taken) advance(0, 0);
+  }
+
+ private:
+  static constexpr int kGuessLag = 1, kTestLag = 2, kRing = kGuessLag + kTestLag + 1;
+  PendingCofacet ring_[kRing];
+};
 
 // A cofacet μ with one transverse facet inside the domain (point p, D̂ = dp < 0) and one outside
 // (q[0..d), D̂ = q[d] ≥ 0): μ ∩ M̂ is the segment pq and D̂ is linear on it, so μ ∩ M̂ ∩ ∂D̂ is the

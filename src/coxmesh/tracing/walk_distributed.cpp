@@ -118,26 +118,20 @@ void DistributedWalk::set_fresh_arrival(std::uint64_t arrival) {
 void DistributedWalk::walk_level() {
   Simplex tau;
   CofaceEnumerator cofacets;
-  constexpr int kGuessLag = 1, kTestLag = 2, kRing = kGuessLag + kTestLag + 1;
-  PendingCofacet pending[kRing];
+  CofacetPipeline pipeline;
   for (std::uint32_t i = level_begin_; i < level_end_; ++i) {
     tau = mine_.simplex(i, d_);
     const bool pivots = oracle_.pivot_enter(tau);
     cofacets.reset(tau, k_ + 1);
-    int taken = 0, guessed = 0, finished = 0;  // pending[j % kRing] for finished ≤ j < taken
-    const auto advance = [&](int guess_lag, int test_lag) {
-      if (taken - guessed > guess_lag)
-        if (PendingCofacet& p = pending[guessed++ % kRing]; guess_other_facet(oracle_, pivots, p)) fetch_slots(p);
-      if (guessed - finished > test_lag) finish_cofacet(i, pending[finished++ % kRing]);
-    };
-    std::uint32_t index = 0;
-    while (const Simplex* cofacet = cofacets.next()) {
-      PendingCofacet& p = pending[taken % kRing];
-      p.index = index++;
-      if (take_cofacet(oracle_, pivots, tau, mine_.key(i), arrivals_[i], *cofacet, p))
-        ++taken, advance(kGuessLag, kTestLag);
-    }
-    while (finished < taken) advance(0, 0);
+    pipeline.run(
+        cofacets,
+        [&](const Simplex& mu, PendingCofacet& p) {
+          return take_cofacet(oracle_, pivots, tau, mine_.key(i), arrivals_[i], mu, p);
+        },
+        [&](PendingCofacet& p) {
+          if (guess_other_facet(oracle_, pivots, p)) fetch_slots(p);
+        },
+        [&](const PendingCofacet& p) { finish_cofacet(i, p); });
   }
 }
 

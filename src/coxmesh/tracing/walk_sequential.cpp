@@ -38,8 +38,7 @@ void SequentialWalk::walk() {
   // the same things in the same order as by other_transverse_facet (pivot_exit only reads values,
   // of v, a vertex of every facet tested after it). Both look-ups are at random places of tables
   // much bigger than the caches: fetched ahead, they wait less (docs/benchmarks.md).
-  constexpr int kGuessLag = 1, kTestLag = 2, kRing = kGuessLag + kTestLag + 1;
-  PendingCofacet pending[kRing];
+  CofacetPipeline pipeline;
   for (; head_ < result_.simplices.size(); ++head_) {
     if (head_ >= level_end_) {  // a breadth-first level starts: handed to the oracle at once
       if (!start_level()) return;
@@ -48,19 +47,16 @@ void SequentialWalk::walk() {
     tau = result_.simplices.simplex(head_, d_);
     const bool pivots = oracle_.pivot_enter(tau);
     cofacets.reset(tau, k_ + 1);
-    int taken = 0, guessed = 0, finished = 0;  // pending[i % kRing] for finished ≤ i < taken
-    const auto advance = [&](int guess_lag, int test_lag) {
-      if (taken - guessed > guess_lag)
-        if (PendingCofacet& p = pending[guessed++ % kRing]; guess_other_facet(oracle_, pivots, p))
-          result_.simplices.prefetch(p.hash);  // (its slot in S)
-      if (guessed - finished > test_lag) finish_cofacet(pending[finished++ % kRing]);
-    };
     // (τ's key is read per cofacet: classify appends to S, which may move the keys)
-    while (const Simplex* cofacet = cofacets.next())
-      if (take_cofacet(oracle_, pivots, tau, result_.simplices.key(head_), arrivals_[head_], *cofacet,
-                       pending[taken % kRing]))
-        ++taken, advance(kGuessLag, kTestLag);
-    while (finished < taken) advance(0, 0);
+    pipeline.run(
+        cofacets,
+        [&](const Simplex& mu, PendingCofacet& p) {
+          return take_cofacet(oracle_, pivots, tau, result_.simplices.key(head_), arrivals_[head_], mu, p);
+        },
+        [&](PendingCofacet& p) {
+          if (guess_other_facet(oracle_, pivots, p)) result_.simplices.prefetch(p.hash);  // (its slot in S)
+        },
+        [&](const PendingCofacet& p) { finish_cofacet(p); });
   }
 }
 
