@@ -1,11 +1,10 @@
 // The topology of a complex split between ranks, without gathering it (topology_distributed.h). The
-// Betti numbers are found as in one process (betti_shrink.cpp), with collapses beside the
-// coreductions: pairs (a, b), a a facet of b, are deleted when b has no other remaining facet or a
-// no other remaining coface; either keeps the homology, and what remains is the restriction of the
-// boundary matrix. A rank deletes only pairs of its own cells and counts every cell of another rank
-// as remaining: its counts are never below the true ones, so a count of 1 whose one cell is its own
-// is exact, and since a deletion elsewhere only lowers counts, a pair that qualifies here still
-// does whatever the other ranks delete.
+// Betti numbers are found as in one process (betti_shrink.cpp), by coreductions: pairs (a, b), a a
+// facet of b, are deleted when b has no other remaining facet, which keeps the homology, and what
+// remains is the restriction of the boundary matrix. A rank deletes only pairs of its own cells and
+// counts every cell of another rank as remaining: its counts are never below the true ones, so a
+// count of 1 whose one cell is its own is exact, and since a deletion elsewhere only lowers counts,
+// a pair that qualifies here still does whatever the other ranks delete.
 #include "coxmesh/cell_complex/topology_distributed.h"
 
 #include <algorithm>
@@ -224,144 +223,63 @@ void sort_unique(std::vector<std::uint32_t>& v) {
   v.erase(std::unique(v.begin(), v.end()), v.end());
 }
 
-// Rank 0's collapses and coreductions (Mrozek and Batko; see betti_shrink.cpp) of what the ranks
-// left, from a queue of the cells whose count came down to one, over cells 0..n−1 in dimension
-// order (n + 1 offsets): there no vertex is known to be removable, so the sweeps of the ranks
-// would have no start. Cells from
-// `cut_first` on are the top dimension of a skeleton whose own homology in that dimension is not wanted: one that is a
-// cycle is removed alone.
-class PairReducer {
+// Rank 0's coreductions (Mrozek and Batko; see betti_shrink.cpp) of what the ranks left, from a
+// queue of the cells whose count of remaining facets came down to one, over cells 0..n−1 in
+// dimension order (n + 1 offsets): no vertex there is known to be removable, so sweeps would have
+// nothing to start from. (Collapses beside them, a cell in one remaining coface deleted with it,
+// left no fewer cells of T³ at P = 2.) Cells from `cut_first` on are the top dimension of a
+// skeleton whose own homology in that dimension is not wanted: one that is a cycle is removed alone.
+class QueueCoreducer {
  public:
-  PairReducer(std::span<const std::uint32_t> offsets, const std::vector<std::uint32_t>& facets, std::uint32_t cut_first)
-      : offsets_(offsets), facets_(facets), cut_first_(cut_first), cell_(offsets.size() - 1) {
-    const std::uint32_t n = static_cast<std::uint32_t>(cell_.size());
+  QueueCoreducer(const std::vector<std::uint32_t>& offsets, const std::vector<std::uint32_t>& facets,
+                 std::uint32_t cut_first)
+      : cut_first_(cut_first), down_(offsets.size() - 1, 0), xdown_(down_.size(), 0), removed_(down_.size(), 0) {
+    const std::uint32_t n = static_cast<std::uint32_t>(down_.size());
+    coface_start_.assign(n + 2, 0);
     for (std::uint32_t a = 0; a < n; ++a)
-      for (std::uint32_t i = offsets_[a]; i < offsets_[a + 1]; ++i) {
-        const std::uint32_t f = facets_[i];
-        ++cell_[a].down, cell_[a].xdown ^= f;
-        ++cell_[f].up, cell_[f].xup ^= a;
-      }
-    coface_start_.assign(n + 1, 0);
-    std::uint64_t total = 0;
-    for (std::uint32_t a = 0; a < n; ++a) {
-      total += cell_[a].up;
-      if (total > UINT32_MAX) throw InputError("the complex has too many incidences (2^32) for its topology");
-      coface_start_[a + 1] = static_cast<std::uint32_t>(total);
-    }
-    coface_ids_.resize(total);
-    for (std::uint32_t a = 0; a < n; ++a) coface_start_[a] = coface_start_[a + 1];
-    for (std::uint32_t a = n; a-- > 0;)
-      for (std::uint32_t i = offsets_[a]; i < offsets_[a + 1]; ++i) coface_ids_[--coface_start_[facets_[i]]] = a;
+      for (std::uint32_t i = offsets[a]; i < offsets[a + 1]; ++i)
+        ++down_[a], xdown_[a] ^= facets[i], ++coface_start_[facets[i] + 2];
+    for (std::uint32_t a = 0; a < n; ++a) coface_start_[a + 2] += coface_start_[a + 1];
+    coface_ids_.resize(coface_start_[n + 1]);
     for (std::uint32_t a = 0; a < n; ++a)
-      if (cell_[a].down == 1 || cell_[a].up == 1 || cut_cycle(a)) pending_.push_back(a);
+      for (std::uint32_t i = offsets[a]; i < offsets[a + 1]; ++i) coface_ids_[coface_start_[facets[i] + 1]++] = a;
+    for (std::uint32_t a = 0; a < n; ++a)
+      if (down_[a] == 1 || cut_cycle(a)) pending_.push_back(a);
   }
 
   void reduce() {
     for (std::size_t head = 0; head < pending_.size(); ++head) {
-      if (head >= kCompactAt && 2 * head >= pending_.size()) {  // (keeps the queue short)
-        pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(head));
-        head = 0;
-      }
-      fetch_ahead(head);
       const std::uint32_t a = pending_[head];
-      const Counts& ca = cell_[a];
-      if (ca.up == kRemoved) continue;
-      // Coreductions first (collapses alone stall on 3-manifolds), and a pair's cells removed
-      // without visiting the other cell of the pair.
-      if (ca.down == 1) {
-        const std::uint32_t b = ca.xdown;
-        remove(a, false, ca.up != 0);
-        remove(b, cell_[b].down != 0, true);
-      } else if (ca.up == 1) {
-        const std::uint32_t b = ca.xup;
-        remove(a, ca.down != 0, false);
-        remove(b, true, cell_[b].up != 0);
+      if (removed_[a]) continue;
+      if (down_[a] == 1) {
+        const std::uint32_t b = xdown_[a];
+        remove(a), remove(b);
       } else if (cut_cycle(a)) {  // (it changes only the skeleton's own H_top)
-        remove(a, false, ca.up != 0);
+        remove(a);
       }
     }
     pending_ = {};
   }
 
-  bool removed(std::uint32_t a) const { return cell_[a].up == kRemoved; }
-  std::size_t remaining() const { return cell_.size() - removed_count_; }
+  bool removed(std::uint32_t a) const { return removed_[a]; }
+  std::size_t remaining() const { return down_.size() - removed_count_; }
 
  private:
-  static constexpr std::uint32_t kRemoved = 0xFFFFFFFFu;
-  static constexpr std::size_t kCompactAt = 1 << 16;
-  static constexpr std::size_t kAhead = 16;
+  bool cut_cycle(std::uint32_t a) const { return a >= cut_first_ && down_[a] == 0; }
 
-  bool cut_cycle(std::uint32_t a) const { return a >= cut_first_ && cell_[a].down == 0; }
-
-  // The queue's cells are scattered over arrays far larger than the cache: their counts and lists
-  // are fetched ahead in stages.
-  void fetch_ahead(std::size_t head) const {
-    if (head + 2 * kAhead < pending_.size()) {
-      const std::uint32_t f = pending_[head + 2 * kAhead];
-      __builtin_prefetch(&cell_[f]);
-      __builtin_prefetch(&offsets_[f]);
-      __builtin_prefetch(&coface_start_[f]);
-    }
-    if (head + kAhead < pending_.size()) {
-      const std::uint32_t f = pending_[head + kAhead];
-      if (!removed(f)) {
-        __builtin_prefetch(&facets_[offsets_[f]]);
-        __builtin_prefetch(coface_ids_.data() + coface_start_[f]);
-      }
-    }
-    if (head + kAhead / 2 < pending_.size()) {  // (the other cell of its pair, if any)
-      const Counts& cf = cell_[pending_[head + kAhead / 2]];
-      if (cf.up != kRemoved && (cf.down == 1 || cf.up == 1)) {
-        const std::uint32_t b = cf.down == 1 ? cf.xdown : cf.xup;
-        __builtin_prefetch(&cell_[b]);
-        __builtin_prefetch(&offsets_[b]);
-        __builtin_prefetch(&coface_start_[b]);
-      }
-    }
-    if (head + kAhead * 3 / 8 < pending_.size()) {  // (its lists)
-      const Counts& cf = cell_[pending_[head + kAhead * 3 / 8]];
-      if (cf.up != kRemoved && (cf.down == 1 || cf.up == 1)) {
-        const std::uint32_t b = cf.down == 1 ? cf.xdown : cf.xup;
-        __builtin_prefetch(&facets_[offsets_[b]]);
-        __builtin_prefetch(coface_ids_.data() + coface_start_[b]);
-      }
-    }
-    if (head + kAhead / 4 < pending_.size()) {  // (the cofaces of a coreduction's facet)
-      const Counts& cf = cell_[pending_[head + kAhead / 4]];
-      if (cf.up != kRemoved && cf.down == 1)
-        for (std::uint32_t i = coface_start_[cf.xdown]; i < coface_start_[cf.xdown + 1]; ++i)
-          __builtin_prefetch(&cell_[coface_ids_[i]]);
+  void remove(std::uint32_t x) {
+    removed_[x] = 1, ++removed_count_;
+    for (std::uint32_t i = coface_start_[x]; i < coface_start_[x + 1]; ++i) {
+      const std::uint32_t y = coface_ids_[i];
+      if (removed_[y]) continue;
+      xdown_[y] ^= x;
+      if (--down_[y] <= 1 && (down_[y] == 1 || y >= cut_first_)) pending_.push_back(y);
     }
   }
 
-  // (visit_...: false when every remaining local facet or coface is the other cell of the pair,
-  // removed next, or none remains)
-  void remove(std::uint32_t x, bool visit_facets, bool visit_cofaces) {
-    cell_[x].up = kRemoved, ++removed_count_;
-    if (visit_facets)
-      for (std::uint32_t i = offsets_[x]; i < offsets_[x + 1]; ++i) {
-        const std::uint32_t f = facets_[i];
-        if (removed(f)) continue;
-        cell_[f].xup ^= x;
-        if (--cell_[f].up == 1) pending_.push_back(f);
-      }
-    if (visit_cofaces)
-      for (std::uint32_t i = coface_start_[x]; i < coface_start_[x + 1]; ++i) {
-        const std::uint32_t y = coface_ids_[i];
-        if (removed(y)) continue;
-        cell_[y].xdown ^= x;
-        if (--cell_[y].down <= 1 && (cell_[y].down == 1 || y >= cut_first_)) pending_.push_back(y);
-      }
-  }
-
-  struct Counts {
-    // remaining facets and cofaces, and the xor of their ids
-    std::uint32_t down = 0, up = 0, xdown = 0, xup = 0;
-  };
-  std::span<const std::uint32_t> offsets_;
-  const std::vector<std::uint32_t>& facets_;
   std::uint32_t cut_first_;
-  std::vector<Counts> cell_;  // (one cache line holds all four)
+  std::vector<std::uint32_t> down_, xdown_;  // remaining facets, and the xor of their ids
+  std::vector<std::uint8_t> removed_;
   std::vector<std::uint32_t> coface_start_, coface_ids_, pending_;
   std::size_t removed_count_ = 0;
 };
@@ -416,7 +334,7 @@ std::vector<std::size_t> finish_betti(const Bytes& records, const Layout& layout
   std::vector<std::uint8_t> keep(dim.size(), 1);
   {
     const auto cut = skeleton ? std::lower_bound(dim.begin(), dim.end(), layout.m - 1) : dim.end();
-    PairReducer reducer(offsets, facets, static_cast<std::uint32_t>(cut - dim.begin()));
+    QueueCoreducer reducer(offsets, facets, static_cast<std::uint32_t>(cut - dim.begin()));
     reducer.reduce();
     for (std::uint32_t a = 0; a < keep.size(); ++a) keep[a] = !reducer.removed(a);
     if (stats) stats->cells_left = reducer.remaining();
