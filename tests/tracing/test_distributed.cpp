@@ -466,6 +466,8 @@ TEST(DistributedTopology, HandWrittenComplexesAsOneProcess) {
       {"two 2-spheres and RP2", join(join(sphere_boundary(2, 0), sphere_boundary(2, 10)), rp2)},
       {"two 3-spheres", join(sphere_boundary(3, 0), sphere_boundary(3, 10))},
       {"two 2-spheres sharing a vertex", join(sphere_boundary(2, 0), sphere_boundary(2, 3))},
+      // (not a manifold, with cycles of the top dimension: β_2 = 2)
+      {"two 2-spheres sharing an edge", join(sphere_boundary(2, 0), sphere_boundary(2, 2))},
       {"three triangles on one edge", {{0, 1, 2}, {0, 1, 3}, {0, 1, 4}}},
       {"three 3-simplices on one triangle", {{0, 1, 2, 3}, {0, 1, 2, 4}, {0, 1, 2, 5}}},
   };

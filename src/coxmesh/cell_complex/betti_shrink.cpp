@@ -9,6 +9,7 @@
 #include <climits>
 
 #include "coxmesh/cell_complex/betti.h"
+#include "coxmesh/cell_complex/coreduction_sweeps.h"
 #include "coxmesh/cell_complex/global_cells.h"
 #include "coxmesh/util/union_find.h"
 
@@ -32,19 +33,15 @@ std::size_t coreduce_in_sweeps(const GlobalCells& c, int top, bool top_is_cut, s
     const CellLevel* cells;
     std::uint32_t first, facet_first, boundary_first;  // (relative to the first edge)
     bool top;
-    std::vector<std::uint32_t> live;  // the cells that a later pass may delete
   };
   std::vector<Level> levels;
   for (int j = 2; j <= top; ++j)
     for (int kind = 0; kind < 2; ++kind) {
       const auto& kinds = kind ? cc.boundary : cc.interior;
       if (j >= static_cast<int>(kinds.size()) || kinds[j].size() == 0) continue;
-      levels.push_back({&kinds[j],
-                        static_cast<std::uint32_t>(c.start(j, kind == 1) - base),
+      levels.push_back({&kinds[j], static_cast<std::uint32_t>(c.start(j, kind == 1) - base),
                         static_cast<std::uint32_t>(c.start(j - 1, kind == 1) - base),
-                        static_cast<std::uint32_t>(c.start(j - 1, true) - base),
-                        j == top,
-                        {}});
+                        static_cast<std::uint32_t>(c.start(j - 1, true) - base), j == top});
     }
   // One cell's move; false when no later pass can delete it (it is gone, or a cycle that stays).
   const auto visit = [&](const Level& l, std::uint32_t a) {
@@ -59,24 +56,9 @@ std::size_t coreduce_in_sweeps(const GlobalCells& c, int top, bool top_is_cut, s
     if (left == 0 && l.top && top_is_cut) gone[l.first + a] = 1;
     return left > 1;
   };
-  std::size_t settled = 1;  // (in the last pass: deleted, or found to stay)
-  for (bool first_pass = true; settled > 0; first_pass = false) {
-    settled = 0;
-    for (Level& l : levels) {
-      const std::size_t before = l.live.size();
-      if (first_pass) {
-        for (std::uint32_t a = 0; a < l.cells->size(); ++a)
-          if (visit(l, a)) l.live.push_back(a);
-        settled += l.cells->size() - l.live.size();
-      } else {
-        std::size_t kept = 0;
-        for (std::uint32_t a : l.live)
-          if (visit(l, a)) l.live[kept++] = a;
-        l.live.resize(kept);
-        settled += before - kept;
-      }
-    }
-  }
+  std::vector<std::uint32_t> sizes;
+  for (const Level& l : levels) sizes.push_back(static_cast<std::uint32_t>(l.cells->size()));
+  sweep_until_settled(sizes, [&](std::size_t l, std::uint32_t a) { return visit(levels[l], a); });
   return static_cast<std::size_t>(std::count(gone.begin(), gone.end(), 0));
 }
 

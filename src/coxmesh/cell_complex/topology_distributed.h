@@ -25,9 +25,10 @@ struct DistributedTopologyStats {
 /// Counts and the Euler characteristic come from the level sizes; the checks of closedness and of
 /// the manifold are made per cell by the rank that holds it (with the facet lists of its facets
 /// in other ranges, and its coface counts, fetched), the first failure in the one-process order
-/// being reported. Betti numbers: each rank removes one vertex per component of its range and
-/// then collapses and coreduces pairs of its cells, counting the cells of other ranges as never
-/// removed; what is left goes to rank 0, which reduces it further and computes its homology
+/// being reported. Betti numbers: each rank removes the vertices of its range (one per component
+/// of its own graph, the others with the edges of breadth-first trees) and then coreduces pairs of
+/// its cells in sweeps, counting the cells of other ranges as never removed; what is left goes to
+/// rank 0, which coreduces it further and computes its homology
 /// (betti.h's steps); β_0, and the correction of β_1 for the vertices removed, come from the
 /// components of each range glued across ranges. For a manifold, as betti_numbers does, the top
 /// cells are not reduced: β_m counts their closed pieces (glued across ranges as the components
