@@ -243,8 +243,9 @@ void run(TraceCliOptions o) {
                        " oracle of point clouds is not traced by several processes yet: run without mpirun");
     // .cxm and .pvtu files in pieces, one per process, and a manifest (native_pieces.h,
     // vtu_pieces.h), with --refine each rank refining its vertices before its piece; other formats
-    // are written by rank 0 from the gathered trace.
-    const bool pieces = write && (format == MeshFormat::cxm || vtu_pieces);
+    // are written by rank 0 from the gathered trace. Without a file, the ranks build and analyse
+    // their parts as for .cxm pieces and write none: no rank gathers the complex.
+    const bool pieces = !write || format == MeshFormat::cxm || vtu_pieces;
     piece_options.projection = o.project;
     piece_options.pole = pole;
     piece_options.simplices = o.simplices;
@@ -264,7 +265,7 @@ void run(TraceCliOptions o) {
       mo.complex_tracer = distributed_complex_tracer(
           *comm,
           [&](CellComplexPart& part) {
-            write_native_piece_file(output, comm->rank(), part);
+            if (write) write_native_piece_file(output, comm->rank(), part);
             return PartCounts{};
           },
           &distributed, nullptr, &topology_stats);

@@ -53,6 +53,14 @@ same_as_one_process three-manifold --preset sphere --m 3 --dim 4 --edge-length 0
 same_as_one_process box --preset torus --box -2,-2,-0.1,2,2,2
 same_as_one_process two-components --function "(x^2+y^2+z^2-1)*((x-3)^2+y^2+z^2-1)" --seed 1,0,0 --seed 4,0,0
 same_as_one_process limit --preset torus --max-simplices 3000
+# Without a file the ranks build and analyse their parts as for pieces (no process gathers the
+# complex) and write nothing: the summary is one process's.
+"$bin" trace --preset sphere --m 3 --dim 4 --edge-length 0.3 --threads 1 --json > no-file.json
+mpi 2 trace --preset sphere --m 3 --dim 4 --edge-length 0.3 --json > no-file.2.json 2> no-file.2.err
+check "no file, 2 processes: the same summary" "$(stable no-file.json)" "$(stable no-file.2.json)"
+check "no file, 2 processes: rank 0 gets part of the cells" yes "$(sed -n 's/.*topology: \([0-9]*\) of \([0-9]*\) cells.*/\1 \2/p' no-file.2.err |
+  awk '{ print ($1 < $2 ? "yes" : "no") }')"
+check "no file, 2 processes: no file written" 0 "$(ls | grep -c -v -E '[.](json|err|cxm)$' || true)"
 # The summary of pieces (no process holds the complex) still counts the traced simplices.
 summary=$(mpi 2 trace --preset torus -o rate.cxm)
 check "pieces: the summary's simplex rate" "0 1" "$(grep -c '(0 simplices/s)' <<<"$summary") $(grep -c '^  traced simplices   [1-9]' <<<"$summary")"
