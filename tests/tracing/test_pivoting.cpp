@@ -256,6 +256,8 @@ TEST(Pivoting, KeptFactorsGiveTheSameGuesses) {
     Triangulation t;
     std::vector<double> seed;
   } cases[] = {
+      {"S2 in R3 (k = 1: F at the ends)", sphere(2, 3, 1.0), nullptr,
+       Triangulation::coxeter(3).with_longest_edge(0.1).rotated(3), sphere(2, 3, 1.0)->seed()},
       {"S3 in R6", sphere(3, 6, 1.0), nullptr, Triangulation::coxeter(6).with_longest_edge(0.6).rotated(2),
        sphere(3, 6, 1.0)->seed()},
       {"flat torus cut", product(sphere(1, 2, 1.0), sphere(1, 2, 1.0)), half_space_domain({1, 1, 0, 0}, 0.5),

@@ -206,7 +206,10 @@ Intersection ImplicitOracle::intersect(const Simplex& tau, double* point) {
     r.domain = 0;
     for (int j = 0; j < n; ++j) r.domain += lambda[j] * dval[j];
   }
-  if (n > 2 && keep_factors_ && r.domain < 0) keep_factors(tau, factored, lambda);  // (the walk's test for S)
+  if (keep_factors_ && r.domain < 0) {    // (the walk's test for S)
+    const double ends[2] = {m[1], m[3]};  // k = 1: pivot_enter needs F at τ's ends alone
+    keep_factors(tau, n == 2 || factored, n == 2 ? ends : lambda);
+  }
   return r;
 }
 
@@ -237,7 +240,8 @@ void ImplicitOracle::keep_factors(const Simplex& tau, bool factored, const doubl
   rows[0] = -1;
   if (!factored) return;
   double* factors = kept_factors_.data() + at * entry;
-  intersect_lu_.save(factors, rows);
+  rows[0] = 0;
+  if (n > 2) intersect_lu_.save(factors, rows);
   for (int i = 0; i < n; ++i) factors[n * n + i] = lambda[i];
 }
 
@@ -257,7 +261,7 @@ bool ImplicitOracle::take_kept_factors(const Simplex& tau) {
   const int* rows = kept_rows_.data() + at * n;
   if (rows[0] < 0) return false;
   const double* factors = kept_factors_.data() + at * entry;
-  pivot_lu_.restore(n, factors, rows);
+  if (n > 2) pivot_lu_.restore(n, factors, rows);
   for (int i = 0; i < n; ++i) pivot_lambda_[i] = factors[n * n + i];
   pivot_rows_ready_ = 0;
   ++factorizations_reused_;
@@ -281,7 +285,7 @@ void ImplicitOracle::prefetch_pivot(const std::int32_t* v) {
 // a segment leaving τ at t = 0; it leaves μ where the first coordinate λ_j − t·w_j reaches 0.
 bool ImplicitOracle::pivot_enter(const Simplex& tau) {
   const int n = k_ + 1;
-  if (n > 2 && take_kept_factors(tau)) return true;  // (no vertex of τ on M then: intersect decided otherwise)
+  if (take_kept_factors(tau)) return true;  // (n > 2: no vertex of τ on M then, intersect decided otherwise)
   double m[SmallLu::kMaxN * SmallLu::kMaxN];
   system_matrix(tau, m, nullptr);
   if (n == 2) {  // k = 1: signs decide (see pivot_exit)

@@ -50,7 +50,7 @@ class ImplicitOracle final : public IntersectionOracle {
   /// walk evaluates each of them anyway, so F is still called once per vertex.
   void prefetch(std::span<const std::uint32_t> packed_simplices) override;
 
-  /// How many times pivot_enter(τ) reused the factors of M(τ) from intersect(τ) (see keep_factors_).
+  /// How many times pivot_enter(τ) reused what intersect(τ) computed of M(τ) (see keep_factors_).
   std::uint64_t factorizations_reused() const { return factorizations_reused_; }
 
   /// Switches the private per-vertex cache off (every query re-evaluates F): the benchmark's ablation.
@@ -83,10 +83,10 @@ class ImplicitOracle final : public IntersectionOracle {
   std::vector<double> scratch_;
   bool batches_ = false;                             // prefetch evaluates levels in batches
   std::vector<double> batch_points_, batch_values_;  // prefetch's vertices (Cartesian) and F, D there
-  // intersect(τ) keeps M(τ)'s factors (its common case) for pivot_enter(τ), which would factor it
-  // again: the sequential walk enters the simplices in the order intersect found them inside the
-  // domain (S's order), so a queue suffices. A simplex entered out of that order (another walk)
-  // switches the queue off: only a factorization of the same τ is ever reused.
+  // intersect(τ) keeps M(τ)'s factors (its common case; k = 1: F at τ's ends) for pivot_enter(τ),
+  // which would look up F at τ's vertices and factor M(τ) again: the sequential walk enters the simplices in the order
+  // intersect found them inside the domain (S's order), so a queue suffices. A simplex entered out of that order
+  // (another walk) switches the queue off: only a factorization of the same τ is ever reused.
   void keep_factors(const Simplex& tau, bool factored, const double* lambda);
   bool take_kept_factors(const Simplex& tau);
   // (The walk's front of new simplices: 16–32 k simplices for SO(3) at edge 1.1; at most 2¹⁷ kept, ≤ 70 MB at k = 6.)
