@@ -245,3 +245,53 @@ TEST(Pivoting, PipelineAsksAsOtherTransverseFacet) {
   EXPECT_GT(compared, 3 * 2 * 400 * 3);
   EXPECT_GT(guessed, 400);
 }
+
+// pivot_enter(τ) reuses the factors of M(τ) that intersect(τ) kept when the sequential walk found τ:
+// nearly every simplex of S, and the guesses are those of factors computed again (the same bits).
+// Out of the walk's order, the oracle factors again.
+TEST(Pivoting, KeptFactorsGiveTheSameGuesses) {
+  const struct {
+    std::string name;
+    FunctionPtr f, domain;
+    Triangulation t;
+    std::vector<double> seed;
+  } cases[] = {
+      {"S2 in R3 (k = 1: F at the ends)", sphere(2, 3, 1.0), nullptr,
+       Triangulation::coxeter(3).with_longest_edge(0.1).rotated(3), sphere(2, 3, 1.0)->seed()},
+      {"S3 in R6", sphere(3, 6, 1.0), nullptr, Triangulation::coxeter(6).with_longest_edge(0.6).rotated(2),
+       sphere(3, 6, 1.0)->seed()},
+      {"flat torus cut", product(sphere(1, 2, 1.0), sphere(1, 2, 1.0)), half_space_domain({1, 1, 0, 0}, 0.5),
+       Triangulation::coxeter(4).with_longest_edge(0.3).rotated(9), std::vector<double>{-1, 0, 1, 0}},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    ImplicitOracle walked(c.t, c.f, c.domain);
+    const TraceResult traced = trace_manifold(c.t, walked, {c.seed});
+    const std::uint32_t n = traced.simplices.size();
+    EXPECT_GT(n, 1000u);
+    EXPECT_GE(walked.factorizations_reused() * 100, n * 99ull);
+    EXPECT_LE(walked.factorizations_reused(), n);
+    // The walk's calls, simplex by simplex (kept), against an oracle entered out of order (factors again).
+    const int d = c.t.dimension(), k = c.f->codimension();
+    ImplicitOracle kept(c.t, c.f, c.domain), again(c.t, c.f, c.domain);
+    ASSERT_TRUE(again.pivot_enter(unpack(traced.simplices.key(n - 1), d)));  // (switches its queue off)
+    std::vector<double> point(d);
+    CofaceEnumerator cofacets;
+    int compared = 0;
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const Simplex tau = unpack(traced.simplices.key(i), d);
+      ASSERT_TRUE(kept.intersect(tau, point.data()).hit);
+      ASSERT_EQ(kept.pivot_enter(tau), again.pivot_enter(tau));
+      cofacets.reset(tau, k + 1);
+      while (const Simplex* mu = cofacets.next()) {
+        std::int32_t v[kMaxDimension];
+        mu->vertex(extra_vertex_index(tau, *mu), v);
+        ASSERT_EQ(kept.pivot_exit(v), again.pivot_exit(v)) << i;
+        ++compared;
+      }
+    }
+    EXPECT_GE(kept.factorizations_reused() * 100, n * 99ull);
+    EXPECT_EQ(again.factorizations_reused(), 0u);
+    EXPECT_GT(compared, 5000);
+  }
+}

@@ -194,7 +194,8 @@ Intersection ImplicitOracle::intersect(const Simplex& tau, double* point) {
   double dval[SmallLu::kMaxN];
   system_matrix(tau, m, dval);
   double lambda[SmallLu::kMaxN];
-  if (!lexicographic_solve(n, m, lambda)) return {};
+  bool factored = false;
+  if (!lexicographic_solve(n, m, lambda, &intersect_lu_, &factored)) return {};
   Intersection r{true, -1.0};
   double xs[32 * kMaxDimension];
   triangulation_.vertex_coordinates(tau, xs);
@@ -205,7 +206,66 @@ Intersection ImplicitOracle::intersect(const Simplex& tau, double* point) {
     r.domain = 0;
     for (int j = 0; j < n; ++j) r.domain += lambda[j] * dval[j];
   }
+  if (keep_factors_ && r.domain < 0) {    // (the walk's test for S)
+    const double ends[2] = {m[1], m[3]};  // k = 1: pivot_enter needs F at τ's ends alone
+    keep_factors(tau, n == 2 || factored, n == 2 ? ends : lambda);
+  }
   return r;
+}
+
+void ImplicitOracle::keep_factors(const Simplex& tau, bool factored, const double* lambda) {
+  const int n = k_ + 1, words = packed_words(d_), entry = n * n + n;
+  if (kept_tail_ - kept_head_ == kept_capacity_) {  // full: twice the room, the entries first
+    if (kept_capacity_ >= kMaxKeptFactors) {        // not a walk's front (intersect alone): off
+      keep_factors_ = false;
+      kept_keys_ = {}, kept_factors_ = {}, kept_rows_ = {};
+      return;
+    }
+    const std::size_t capacity = std::max<std::size_t>(64, 2 * kept_capacity_);
+    std::vector<std::uint32_t> keys(capacity * words);
+    std::vector<double> factors(capacity * entry);
+    std::vector<int> rows(capacity * n);
+    for (std::size_t i = kept_head_; i < kept_tail_; ++i) {
+      const std::size_t from = i & (kept_capacity_ - 1), to = i - kept_head_;
+      std::copy_n(kept_keys_.data() + from * words, words, keys.data() + to * words);
+      std::copy_n(kept_factors_.data() + from * entry, entry, factors.data() + to * entry);
+      std::copy_n(kept_rows_.data() + from * n, n, rows.data() + to * n);
+    }
+    kept_keys_ = std::move(keys), kept_factors_ = std::move(factors), kept_rows_ = std::move(rows);
+    kept_tail_ -= kept_head_, kept_head_ = 0, kept_capacity_ = capacity;
+  }
+  const std::size_t at = kept_tail_++ & (kept_capacity_ - 1);
+  pack(tau, kept_keys_.data() + at * words);
+  int* rows = kept_rows_.data() + at * n;
+  rows[0] = -1;
+  if (!factored) return;
+  double* factors = kept_factors_.data() + at * entry;
+  rows[0] = 0;
+  if (n > 2) intersect_lu_.save(factors, rows);
+  for (int i = 0; i < n; ++i) factors[n * n + i] = lambda[i];
+}
+
+// The factors intersect(τ) kept, when they are next in the queue (see keep_factors_).
+bool ImplicitOracle::take_kept_factors(const Simplex& tau) {
+  if (!keep_factors_) return false;
+  const int n = k_ + 1, words = packed_words(d_), entry = n * n + n;
+  std::uint32_t key[packed_words(kMaxDimension)];
+  pack(tau, key);
+  const std::size_t at = kept_head_ & (kept_capacity_ - 1);
+  if (kept_head_ == kept_tail_ || !std::equal(key, key + words, kept_keys_.data() + at * words)) {
+    keep_factors_ = false;  // not the sequential walk's order
+    kept_keys_ = {}, kept_factors_ = {}, kept_rows_ = {};
+    return false;
+  }
+  ++kept_head_;
+  const int* rows = kept_rows_.data() + at * n;
+  if (rows[0] < 0) return false;
+  const double* factors = kept_factors_.data() + at * entry;
+  if (n > 2) pivot_lu_.restore(n, factors, rows);
+  for (int i = 0; i < n; ++i) pivot_lambda_[i] = factors[n * n + i];
+  pivot_rows_ready_ = 0;
+  ++factorizations_reused_;
+  return true;
 }
 
 // values_at(v)'s reads: its slot of the recent vertices, and its slot in the big table.
@@ -225,6 +285,7 @@ void ImplicitOracle::prefetch_pivot(const std::int32_t* v) {
 // a segment leaving τ at t = 0; it leaves μ where the first coordinate λ_j − t·w_j reaches 0.
 bool ImplicitOracle::pivot_enter(const Simplex& tau) {
   const int n = k_ + 1;
+  if (take_kept_factors(tau)) return true;  // (n > 2: no vertex of τ on M then, intersect decided otherwise)
   double m[SmallLu::kMaxN * SmallLu::kMaxN];
   system_matrix(tau, m, nullptr);
   if (n == 2) {  // k = 1: signs decide (see pivot_exit)

@@ -7,6 +7,7 @@
 // same order: the results are the same bits.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <utility>
@@ -56,6 +57,22 @@ class SmallLu {
   }
 
   int size() const { return n_; }
+
+  /// The factors in n·n doubles and the n row indices of P, and back: a factorization kept for later.
+  /// (Copies of constant length for the unrolled sizes: no call to memcpy.)
+  void save(double* factors, int* rows) const {
+    with_small_size(n_, [&]<int N>() {
+      std::copy_n(lu_.data(), N ? N * N : n_ * n_, factors);
+      std::copy_n(perm_.data(), N ? N : n_, rows);
+    });
+  }
+  void restore(int n, const double* factors, const int* rows) {
+    n_ = n;
+    with_small_size(n_, [&]<int N>() {
+      std::copy_n(factors, N ? N * N : n_ * n_, lu_.data());
+      std::copy_n(rows, N ? N : n_, perm_.data());
+    });
+  }
 
   /// x = M⁻¹·b (b and x may not alias).
   void solve(const double* b, double* x) const {

@@ -263,10 +263,14 @@ int quick_first_column(int n, const SmallLu& lu, double* lambda) {
 
 // Is every row of A⁻¹ lexicographically positive? The filters from the cheapest on; exact
 // arithmetic only for what none of them certifies. On true, `first_column` = A⁻¹e₀.
-bool lexicographically_positive_inverse(int n, const double* original, double* first_column) {
-  SmallLu lu;
+// `*factored`: true when that came from the factors of M as given, left in `lu`.
+bool lexicographically_positive_inverse(int n, const double* original, double* first_column, SmallLu& lu,
+                                        bool* factored) {
   if (lu.factor(n, original)) {  // most calls: λ alone, on M as given
-    if (const int signs = quick_first_column(n, lu, first_column); signs >= 0) return signs == 1;
+    if (const int signs = quick_first_column(n, lu, first_column); signs >= 0) {
+      if (factored) *factored = true;
+      return signs == 1;
+    }
   }
   // Rows scaled by powers of two to a largest entry in [1/2, 1): exact, and a positive row scaling
   // scales the columns of A⁻¹, so no sign changes; but the error bounds, which are not invariant
@@ -311,14 +315,16 @@ bool vertex_on_manifold(int n, const double* m, int j, double* lambda) {
     ++gc;
   }
   std::array<double, kMaxN> unused;
-  if (!lexicographically_positive_inverse(k, g.data(), unused.data())) return false;
+  SmallLu lu;
+  if (!lexicographically_positive_inverse(k, g.data(), unused.data(), lu, nullptr)) return false;
   for (int r = 0; r < n; ++r) lambda[r] = r == j ? 1.0 : 0.0;
   return true;
 }
 
 }  // namespace
 
-bool lexicographic_solve(int n, const double* m, double* lambda) {
+bool lexicographic_solve(int n, const double* m, double* lambda, SmallLu* lu, bool* factored) {
+  if (factored) *factored = false;
   if (n == 2) {
     // M = [[1, 1], [f0, f1]]: exact in floating point. Transverse iff one value is > 0 and the
     // other ≤ 0 (zero counts as negative); the sign of f1 − f0 is exact.
@@ -348,7 +354,9 @@ bool lexicographic_solve(int n, const double* m, double* lambda) {
     on_manifold = c;
   }
   if (on_manifold >= 0) return vertex_on_manifold(n, m, on_manifold, lambda);
-  return lexicographically_positive_inverse(n, m, lambda);
+  if (lu) return lexicographically_positive_inverse(n, m, lambda, *lu, factored);
+  SmallLu own;
+  return lexicographically_positive_inverse(n, m, lambda, own, nullptr);
 }
 
 }  // namespace coxmesh
