@@ -106,13 +106,44 @@ class PackedKeyIndex {
       if (next_hash(far, hash)) prefetch(hash);
     for (std::size_t k = 0; k < kAhead / 2; ++k)
       if (next_hash(near, hash)) prefetch_key(hash);
-    for (const KeyRun& run : runs)
-      for (std::size_t i = 0; i < run.size; ++i) {
-        if (next_hash(far, hash)) prefetch(hash);
-        if (next_hash(near, hash)) prefetch_key(hash);
-        const auto [id, fresh] = insert(run.keys + i * words_, run.hashes[i]);
-        run.ids[i] = fresh ? id | kNewBit : id;
-      }
+    // A new key is copied to its place in the keys' array, opened up to its capacity (no check or
+    // call per key); the array grows as insert() grows it (append_few), and is cut back to the keys
+    // at the end, or on an exception.
+    const std::size_t w = static_cast<std::size_t>(words_);
+    std::size_t room = keys_.capacity() / w;  // keys that fit
+    keys_.resize(room * w);
+    try {
+      for (const KeyRun& run : runs)
+        for (std::size_t i = 0; i < run.size; ++i) {
+          if (next_hash(far, hash)) prefetch(hash);
+          if (next_hash(near, hash)) prefetch_key(hash);
+          const std::uint32_t* key = run.keys + i * w;
+          std::size_t slot;
+          if (const std::uint32_t id = find(key, run.hashes[i], slot); id != kAbsent) {
+            run.ids[i] = id;
+            continue;
+          }
+          if (size_ >= kMaxEntries) throw InputError("more than 2^31 - 1 entries in one index");
+          const std::uint32_t id = size_;
+          if (id < room) {
+            std::uint32_t* place = keys_.data() + id * w;
+            for (std::size_t j = 0; j < w; ++j) place[j] = key[j];  // (a few words: no call to copy them)
+          } else {
+            keys_.resize(id * w);
+            append_few(keys_, key, w);
+            room = keys_.capacity() / w;
+            keys_.resize(room * w);
+          }
+          ++size_;
+          slots_[slot] = LinearProbe::entry(run.hashes[i], id + 1);
+          if (2 * static_cast<std::size_t>(size_) > slots_.size()) rehash(2 * slots_.size());  // load ≤ 1/2
+          run.ids[i] = id | kNewBit;
+        }
+    } catch (...) {
+      keys_.resize(static_cast<std::size_t>(size_) * w);
+      throw;
+    }
+    keys_.resize(static_cast<std::size_t>(size_) * w);
   }
 
   /// Appends n keys that the caller knows to be absent, without indexing them yet: they get the
