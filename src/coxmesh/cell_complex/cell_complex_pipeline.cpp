@@ -96,13 +96,13 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
     const std::uint32_t a = static_cast<std::uint32_t>(batch * batch_cells + t * kChunk);
     const std::uint32_t b = std::min(prev.size(), a + kChunk);
     for (std::uint32_t c = a; c < b; ++c) {  // (straight from the packed keys, into arrays grown once per cell)
-      const std::uint32_t* tau = prev.simplices.key(c);
-      const std::size_t first = out.hashes.size(), count = packed_cofacet_count(tau, d);
+      const PackedCofacets cofacets(prev.simplices.key(c), d);
+      const std::size_t first = out.hashes.size(), count = cofacets.count();
       out.keys.resize((first + count) * words), out.hashes.resize(first + count);
       counts[c] = static_cast<std::uint32_t>(count);
       std::uint32_t* keys = out.keys.data() + first * words;
       std::uint64_t* hashes = out.hashes.data() + first;
-      for_each_packed_cofacet(tau, d, [&](const std::uint32_t* nu, std::uint64_t hash) {
+      cofacets.for_each([&](const std::uint32_t* nu, std::uint64_t hash) {
         for (int i = 0; i < words; ++i) *keys++ = nu[i];
         *hashes++ = hash;
       });

@@ -104,41 +104,49 @@ inline void CofaceEnumerator::gray_step() {
 }
 
 /// The cofacets of the simplex with packed key `key` (packed_words(d) words, simplex.h), as packed
-/// keys, in the order of CofaceEnumerator(unpack(key, d), k + 1): emit(const std::uint32_t* cofacet,
-/// std::uint64_t hash) is called with a view of a working key, valid during the call, and its
-/// hash_words. The same block splits in Gray-code order (thesis §3.5), written straight into the
-/// packed form: one label byte (and, after a rotation, one y word) changes per cofacet, with no
-/// Simplex to copy or pack, and the hash follows those words in O(1) (hash_sum_update). For the
-/// cell complex, whose levels are cofacets of the level below (thesis §4.2).
-namespace packed_detail {
-inline int label(const std::uint32_t* key, int d, int i) {
-  return static_cast<int>((key[d + (i >> 2)] >> 8 * (i & 3)) & 0xFFu);
-}
-// The number of elements of each block of the packed simplex (a plain count: std::popcount of a
-// bit set is a library call on baseline x86-64).
-inline void block_sizes(const std::uint32_t* key, int d, std::uint8_t (&sizes)[kMaxDimension + 1]) {
-  for (int b = 0; b <= kMaxDimension; ++b) sizes[b] = 0;
-  for (int i = 0; i <= d; ++i) ++sizes[label(key, d, i)];
-}
-}  // namespace packed_detail
+/// keys, in the order of CofaceEnumerator(unpack(key, d), k + 1): for_each(emit) calls
+/// emit(const std::uint32_t* cofacet, std::uint64_t hash) with a view of a working key, valid
+/// during the call, and its hash_words. The same block splits in Gray-code order (thesis §3.5),
+/// written straight into the packed form: one label byte (and, after a rotation, one y word)
+/// changes per cofacet, with no Simplex to copy or pack, and the hash follows those words in O(1)
+/// (hash_sum_update). For the cell complex, whose levels are cofacets of the level below (thesis
+/// §4.2). The blocks are read once, in one pass over the labels, for count() and for_each() both.
+class PackedCofacets {
+ public:
+  PackedCofacets(const std::uint32_t* key, int d) : key_(key), d_(d), k_(label(d)) {
+    // Every block 0..k has an element: zeroed by a pass over them (a loop over the blocks would
+    // compile to a `rep stos`, slow to start for a few words).
+    for (int i = 0; i <= d; ++i) members_[label(i)] = 0;
+    for (int i = 0; i <= d; ++i) members_[label(i)] |= std::uint32_t{1} << i;
+  }
+  /// Σ 2^n − 2 over the blocks of n elements (a block splits into two ordered non-empty parts).
+  std::size_t count() const {
+    std::size_t count = 0;
+    for (int b = 0; b <= k_; ++b) count += (std::size_t{1} << bit_count(members_[b])) - 2;
+    return count;
+  }
+  template <class Emit>
+  void for_each(Emit&& emit) const;
 
-/// The number of cofacets of the simplex with packed key `key`: Σ 2^n − 2 over its blocks of n
-/// elements (a block splits into two ordered non-empty parts).
-inline std::size_t packed_cofacet_count(const std::uint32_t* key, int d) {
-  std::uint8_t sizes[kMaxDimension + 1];
-  packed_detail::block_sizes(key, d, sizes);
-  std::size_t count = 0;
-  for (int b = 0, k = packed_detail::label(key, d, d); b <= k; ++b) count += (std::size_t{1} << sizes[b]) - 2;
-  return count;
-}
+ private:
+  int label(int i) const { return static_cast<int>((key_[d_ + (i >> 2)] >> 8 * (i & 3)) & 0xFFu); }
+  // (std::popcount is a library call on baseline x86-64)
+  static int bit_count(std::uint32_t x) {
+    x -= (x >> 1) & 0x55555555u;
+    x = (x & 0x33333333u) + ((x >> 2) & 0x33333333u);
+    return static_cast<int>((((x + (x >> 4)) & 0x0F0F0F0Fu) * 0x01010101u) >> 24);
+  }
+
+  const std::uint32_t* key_;
+  int d_, k_;
+  std::uint32_t members_[kMaxDimension + 1];  // per block, its elements as a bit set
+};
 
 template <class Emit>
-void for_each_packed_cofacet(const std::uint32_t* key, int d, Emit&& emit) {
+void PackedCofacets::for_each(Emit&& emit) const {
+  const std::uint32_t* const key = key_;
+  const int d = d_, k = k_, label_words = (d + 1 + 3) / 4;
   const std::uint32_t* labels = key + d;
-  const auto label = [key, d](int i) { return packed_detail::label(key, d, i); };
-  const int k = label(d), label_words = (d + 1 + 3) / 4;
-  std::uint8_t sizes[kMaxDimension + 1];
-  packed_detail::block_sizes(key, d, sizes);
   std::uint32_t cur[packed_words(kMaxDimension)];
   for (int i = 0; i < d + label_words; ++i) cur[i] = key[i];
   std::uint64_t sum = hash_sum(cur, d + label_words);  // of cur, kept with every word written
@@ -147,11 +155,11 @@ void for_each_packed_cofacet(const std::uint32_t* key, int d, Emit&& emit) {
     cur[i] = word;
   };
   for (int b = k; b >= 0; --b) {
-    const int n = sizes[b];
-    if (n < 2) continue;
     std::uint8_t moving[kMaxDimension + 1];  // the block's elements but its last, increasing
-    for (int i = 0, j = 0; j + 1 < n; ++i)
-      if (label(i) == b) moving[j++] = static_cast<std::uint8_t>(i);
+    int n = 1;
+    for (std::uint32_t rest = members_[b]; rest & (rest - 1); rest &= rest - 1)
+      moving[n++ - 1] = static_cast<std::uint8_t>(std::countr_zero(rest));
+    if (n < 2) continue;
     for (int half = 0; half < 2; ++half) {
       // As CofaceEnumerator::start_split: labels ≥ θ rise by one, the moving set gets label θ.
       const int theta = half == 0 ? b : b < k ? b + 1 : 0;
@@ -176,6 +184,14 @@ void for_each_packed_cofacet(const std::uint32_t* key, int d, Emit&& emit) {
         for (int j = 0; j + 1 < n; ++j) set(moving[j], key[moving[j]]);
     }
   }
+}
+
+/// The number of cofacets of the simplex with packed key `key`.
+inline std::size_t packed_cofacet_count(const std::uint32_t* key, int d) { return PackedCofacets(key, d).count(); }
+/// PackedCofacets(key, d).for_each(emit).
+template <class Emit>
+void for_each_packed_cofacet(const std::uint32_t* key, int d, Emit&& emit) {
+  PackedCofacets(key, d).for_each(emit);
 }
 
 /// Number of l-cofaces of τ (thesis §3.5): Σ over cut vectors of Π_i a(n_i, c_i + 1), where
