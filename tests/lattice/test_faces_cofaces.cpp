@@ -204,12 +204,13 @@ void expect_packed_cofacets_as_enumerated(const Simplex& s) {
     expected.insert(expected.end(), key.begin(), key.end());
   }
   pack(s, key.data());
-  for_each_packed_cofacet(key.data(), d, [&](const std::uint32_t* c, std::uint64_t hash) {
+  const PackedCofacets cofacets(key.data(), d);
+  cofacets.for_each([&](const std::uint32_t* c, std::uint64_t hash) {
     found.insert(found.end(), c, c + words);
     EXPECT_EQ(hash, hash_words(c, words));  // (kept up to date word by word)
   });
   EXPECT_EQ(found, expected) << s;
-  EXPECT_EQ(packed_cofacet_count(key.data(), d), expected.size() / words) << s;
+  EXPECT_EQ(cofacets.count(), expected.size() / words) << s;
 }
 
 TEST(Cofaces, PackedCofacetsInEnumeratorOrderForEveryTypeUpToDimension7) {

@@ -186,14 +186,6 @@ void PackedCofacets::for_each(Emit&& emit) const {
   }
 }
 
-/// The number of cofacets of the simplex with packed key `key`.
-inline std::size_t packed_cofacet_count(const std::uint32_t* key, int d) { return PackedCofacets(key, d).count(); }
-/// PackedCofacets(key, d).for_each(emit).
-template <class Emit>
-void for_each_packed_cofacet(const std::uint32_t* key, int d, Emit&& emit) {
-  PackedCofacets(key, d).for_each(emit);
-}
-
 /// Number of l-cofaces of τ (thesis §3.5): Σ over cut vectors of Π_i a(n_i, c_i + 1), where
 /// a(n, j) = j!·S(n, j) counts ordered partitions. Throws InputError only if the count, or a term
 /// it needs, exceeds 64 bits (e.g. the 21! maximal cofaces of a vertex in d = 20); cofacet counts
