@@ -99,9 +99,12 @@ struct Arrivals {
   Arrivals(int words, int extra, bool facets) : found(words), extra(extra), facets(facets) {}
 
   void add(const std::uint32_t* key, std::uint64_t discovery, const double* x) {
+    add(key, hash_words(key, found.words()), discovery, x);
+  }
+  void add(const std::uint32_t* key, std::uint64_t hash, std::uint64_t discovery, const double* x) {
     const int words = found.words();
     for (int i = 0; i < words; ++i) batch_keys.push_back(key[i]);  // (a few words: no call to copy them)
-    batch_hashes.push_back(hash_words(key, words));
+    batch_hashes.push_back(hash);
     batch_discoveries.push_back(discovery);
     batch_values.insert(batch_values.end(), x, x + extra);
     if (batch_hashes.size() == kBatch) flush();
@@ -127,11 +130,26 @@ struct Arrivals {
       if (facets) incidences.push_back(std::uint64_t{id} << 32 | discovery >> 32);
     }
     batch_keys.clear(), batch_hashes.clear(), batch_discoveries.clear(), batch_values.clear();
+    if (expected > n) {  // room for the level at the first batch's rate: no copies as it grows
+      const std::size_t cells =
+          std::min<std::size_t>(found.size() * (expected / n) + found.size(), PackedKeyIndex::kMaxEntries);
+      found.reserve(cells), first.reserve(cells), values.reserve(cells * extra);
+      if (facets) incidences.reserve(expected);
+    }
+    expected = 0;
   }
   // A record for `owner`: added here, or appended to its message.
   void send(std::vector<std::vector<std::byte>>& out, int owner, int rank, const std::uint32_t* key,
             std::uint64_t discovery, const double* x) {
     if (owner == rank) return add(key, discovery, x);
+    append(out[owner], key, discovery, x);
+  }
+  void send(std::vector<std::vector<std::byte>>& out, int owner, int rank, const std::uint32_t* key, std::uint64_t hash,
+            std::uint64_t discovery, const double* x) {
+    if (owner == rank) return add(key, hash, discovery, x);
+    append(out[owner], key, discovery, x);
+  }
+  void append(std::vector<std::byte>& out, const std::uint32_t* key, std::uint64_t discovery, const double* x) const {
     std::byte record[sizeof(std::uint32_t) * packed_words(kMaxDimension) + sizeof(std::uint64_t) +
                      sizeof(double) * kMaxDimension];  // (one append per record)
     std::byte* at = record;
@@ -141,10 +159,11 @@ struct Arrivals {
     write(key, static_cast<std::size_t>(found.words()));
     write(&discovery, 1);
     write(x, static_cast<std::size_t>(extra));
-    out[owner].insert(out[owner].end(), record, at);
+    out.insert(out.end(), record, at);
   }
 
   static constexpr std::size_t kBatch = 4096;
+  std::size_t expected = 0;  // records this rank will get, if known (an estimate): sizes the arrays after one batch
   PackedKeyIndex found;
   int extra;
   bool facets;
@@ -263,20 +282,25 @@ CellLevel next_level(const CellLevel& prev, const std::vector<std::uint32_t>& pr
   const int words = packed_words(d), ranks = comm.size();
   std::vector<std::vector<std::byte>> out(ranks);
   Arrivals arrivals(words, 0, true);
-  const double no_values = 0;  // (no extra values at this level)
-  CofaceEnumerator cofaces;
-  std::uint32_t key[packed_words(kMaxDimension)];
+  const double no_values = 0;      // (no extra values at this level)
   LastOwner last_owner(d, ranks);  // (a cell's cofaces mostly share their minimal vertex)
+  COXMESH_ASSERT(prev.size() == 0 || prev.simplices.simplex(0, d).k + 1 == l);  // (cofacets: PackedCofacets)
+  {  // the records this rank makes, from the first cells' cofacets (the few from other ranks aside)
+    constexpr std::uint32_t kSample = 256;
+    std::size_t sampled = 0;
+    const std::uint32_t n = std::min(prev.size(), kSample);
+    for (std::uint32_t c = 0; c < n; ++c) sampled += PackedCofacets(prev.simplices.key(c), d).count();
+    if (n > 0) arrivals.expected = sampled * prev.size() / n;
+  }
   agreed(comm, [&] {
     for (std::uint32_t c = 0; c < prev.size(); ++c) {
       std::uint64_t discovery = std::uint64_t{prev_ids[c]} << 32;
-      cofaces.reset(prev.simplices.simplex(c, d), l);
-      while (const Simplex* nu = cofaces.next()) {
-        pack(*nu, key);
+      // (straight from the packed keys, with their hashes, as the one-process complex enumerates them)
+      PackedCofacets(prev.simplices.key(c), d).for_each([&](const std::uint32_t* nu, std::uint64_t hash) {
         // (y, the minimal vertex, first in the key)
-        arrivals.send(out, last_owner.of(reinterpret_cast<const std::int32_t*>(key)), comm.rank(), key, discovery++,
+        arrivals.send(out, last_owner.of(reinterpret_cast<const std::int32_t*>(nu)), comm.rank(), nu, hash, discovery++,
                       &no_values);
-      }
+      });
     }
   });
   return settle(arrivals, out, prev_size, comm, ids, size, nullptr);
