@@ -176,6 +176,16 @@ bool launched_by_mpi() {
     if (std::getenv(name)) return true;
   return false;
 }
+
+// Every rank of an OpenMPI job on this one node: the shared-memory transport of the ob1 layer
+// serves them, and OpenMPI's default choice of UCX, which probes its network transports first,
+// cost 0.2 s more to start (0.33 s against 0.13 s for mpirun -n 2 on a small run; the messages
+// are as fast). A transport chosen by the user (OMPI_MCA_pml) is left as it is.
+void prefer_shared_memory_on_one_node() {
+  const char* size = std::getenv("OMPI_COMM_WORLD_SIZE");
+  const char* local = std::getenv("OMPI_COMM_WORLD_LOCAL_SIZE");
+  if (size && local && std::strcmp(size, local) == 0) setenv("OMPI_MCA_pml", "ob1", 0);
+}
 #endif
 
 std::unique_ptr<Communicator> session_communicator;
@@ -187,6 +197,7 @@ std::streambuf* error_stream = nullptr;             // std::cerr's, which ranks 
 MpiSession::MpiSession([[maybe_unused]] int& argc, [[maybe_unused]] char**& argv) {
 #ifdef COXMESH_MPI
   if (!launched_by_mpi()) return;
+  prefer_shared_memory_on_one_node();
   MPI_Init(&argc, &argv);
   session_initialised = true;
   int size = 1;
