@@ -112,25 +112,46 @@ Ranges redistribute(CellComplexPart& part, const Layout& layout, Communicator& c
   Ranges out;
   part.cells.vertices = PointArray{};
   part.cells.boundary_vertices = PointArray{};
-  std::vector<std::uint32_t> record;
+  const int ranks = comm.size();
+  std::vector<int> owners;  // of each cell of the level
+  std::vector<std::size_t> words(ranks);
   for (int l = 0; l < layout.levels(); ++l) {
     const int j = l / 2;
     const bool boundary = l % 2 == 1;
-    std::vector<Bytes> outgoing(comm.size());
+    std::vector<Bytes> outgoing(ranks);
     auto& levels = boundary ? part.cells.boundary : part.cells.interior;
     auto& all_ids = boundary ? part.boundary_ids : part.interior_ids;
     if (j < static_cast<int>(levels.size()) && j < static_cast<int>(all_ids.size())) {
       CellLevel& level = levels[j];
       const std::vector<std::uint32_t>& ids = all_ids[j];
+      const bool boundary_facets = !boundary && j > 0 && !level.boundary_facet.empty();
+      const auto facet_count = [&](std::uint32_t c) -> std::uint32_t {
+        if (j == 0) return 0;
+        return static_cast<std::uint32_t>(level.facets(c).size()) +
+               (boundary_facets && level.boundary_facet[c] != CellLevel::kNone ? 1u : 0u);
+      };
+      // Each message sized first, then written in place: a record is (id, count, facets…).
+      owners.resize(ids.size());
+      std::fill(words.begin(), words.end(), 0);
       for (std::uint32_t c = 0; c < ids.size(); ++c) {
-        record.assign({ids[c], 0});
-        if (j > 0) {
-          for (std::uint32_t f : level.facets(c)) record.push_back(static_cast<std::uint32_t>(layout.start[l - 2] + f));
-          if (!boundary && !level.boundary_facet.empty() && level.boundary_facet[c] != CellLevel::kNone)
-            record.push_back(static_cast<std::uint32_t>(layout.start[l - 1] + level.boundary_facet[c]));
-        }
-        record[1] = static_cast<std::uint32_t>(record.size() - 2);
-        put(outgoing[layout.owner(l, ids[c])], record.data(), record.size());
+        owners[c] = layout.owner(l, ids[c]);
+        words[owners[c]] += 2 + facet_count(c);
+      }
+      std::vector<std::uint32_t*> at(ranks);
+      for (int r = 0; r < ranks; ++r) {
+        outgoing[r].resize(words[r] * sizeof(std::uint32_t));
+        at[r] = reinterpret_cast<std::uint32_t*>(outgoing[r].data());  // (operator new: aligned)
+      }
+      const auto below = static_cast<std::uint32_t>(layout.start[std::max(l - 2, 0)]);
+      const auto boundary_below = static_cast<std::uint32_t>(layout.start[std::max(l - 1, 0)]);
+      for (std::uint32_t c = 0; c < ids.size(); ++c) {
+        std::uint32_t*& w = at[owners[c]];
+        *w++ = ids[c];
+        *w++ = facet_count(c);
+        if (j == 0) continue;
+        for (std::uint32_t f : level.facets(c)) *w++ = below + f;
+        if (boundary_facets && level.boundary_facet[c] != CellLevel::kNone)
+          *w++ = boundary_below + level.boundary_facet[c];
       }
       level = CellLevel{};
       all_ids[j] = {};
@@ -141,18 +162,22 @@ Ranges redistribute(CellComplexPart& part, const Layout& layout, Communicator& c
     agreed(comm, [&] {
       const std::size_t base = layout.local_start[l], n = layout.hi(l) - layout.lo(l);
       out.offsets.resize(base + n + 1, 0);
-      std::vector<std::uint32_t> words(in.size() / sizeof(std::uint32_t));
-      if (!words.empty()) std::memcpy(words.data(), in.data(), in.size());
+      const std::size_t size = in.size() / sizeof(std::uint32_t);
+      const auto word = [&](std::size_t at) {
+        std::uint32_t x;
+        std::memcpy(&x, in.data() + at * sizeof x, sizeof x);
+        return x;
+      };
       std::size_t total = 0;
-      for (std::size_t at = 0; at < words.size(); at += 2 + words[at + 1]) {
-        out.offsets[base + 1 + (words[at] - layout.lo(l))] = words[at + 1];
-        total += words[at + 1];
+      for (std::size_t at = 0; at < size; at += 2 + word(at + 1)) {
+        out.offsets[base + 1 + (word(at) - layout.lo(l))] = word(at + 1);
+        total += word(at + 1);
       }
       for (std::size_t i = 0; i < n; ++i) out.offsets[base + 1 + i] += out.offsets[base + i];
       out.facets.resize(out.facets.size() + total);
-      for (std::size_t at = 0; at < words.size(); at += 2 + words[at + 1])
-        std::copy_n(words.begin() + static_cast<std::ptrdiff_t>(at + 2), words[at + 1],
-                    out.facets.begin() + out.offsets[base + (words[at] - layout.lo(l))]);
+      for (std::size_t at = 0; at < size; at += 2 + word(at + 1))
+        std::memcpy(out.facets.data() + out.offsets[base + (word(at) - layout.lo(l))],
+                    in.data() + (at + 2) * sizeof(std::uint32_t), word(at + 1) * sizeof(std::uint32_t));
     });
   }
   part = CellComplexPart{};
