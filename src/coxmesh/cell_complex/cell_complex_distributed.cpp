@@ -96,24 +96,33 @@ std::uint64_t number_by_keys(const std::vector<std::uint64_t>& keys, std::uint64
 // others arrive in one exchange. Records are inserted in batches, the table's slots fetched ahead
 // (insert_runs): a level's cells are millions of random look-ups.
 struct Arrivals {
-  Arrivals(int words, int extra, bool facets) : found(words), extra(extra), facets(facets) {}
+  Arrivals(int words, int extra, bool facets)
+      : found(words),
+        extra(extra),
+        facets(facets),
+        batch_keys(kBatch * words),
+        batch_ids(kBatch),
+        batch_hashes(kBatch),
+        batch_discoveries(kBatch),
+        batch_values(kBatch * extra) {}
 
   void add(const std::uint32_t* key, std::uint64_t discovery, const double* x) {
     add(key, hash_words(key, found.words()), discovery, x);
   }
   void add(const std::uint32_t* key, std::uint64_t hash, std::uint64_t discovery, const double* x) {
     const int words = found.words();
-    for (int i = 0; i < words; ++i) batch_keys.push_back(key[i]);  // (a few words: no call to copy them)
-    batch_hashes.push_back(hash);
-    batch_discoveries.push_back(discovery);
-    batch_values.insert(batch_values.end(), x, x + extra);
-    if (batch_hashes.size() == kBatch) flush();
+    // (into arrays of a batch's size: a few words each, no growth to check)
+    std::uint32_t* to = batch_keys.data() + batched * words;
+    for (int i = 0; i < words; ++i) to[i] = key[i];
+    batch_hashes[batched] = hash;
+    batch_discoveries[batched] = discovery;
+    for (int i = 0; i < extra; ++i) batch_values[batched * extra + i] = x[i];
+    if (++batched == kBatch) flush();
   }
   // Inserts the batch: ids in the order of add(), as one insert per record would give them.
   void flush() {
-    const std::size_t n = batch_hashes.size();
+    const std::size_t n = batched;
     if (n == 0) return;
-    batch_ids.resize(n);
     const KeyRun run{batch_keys.data(), batch_hashes.data(), n, batch_ids.data()};
     found.insert_runs({&run, 1});
     for (std::size_t i = 0; i < n; ++i) {
@@ -129,7 +138,7 @@ struct Arrivals {
       }
       if (facets) incidences.push_back(std::uint64_t{id} << 32 | discovery >> 32);
     }
-    batch_keys.clear(), batch_hashes.clear(), batch_discoveries.clear(), batch_values.clear();
+    batched = 0;
     if (expected > n) {  // room for the level at the first batch's rate: no copies as it grows
       const std::size_t cells =
           std::min<std::size_t>(found.size() * (expected / n) + found.size(), PackedKeyIndex::kMaxEntries);
@@ -172,6 +181,7 @@ struct Arrivals {
   std::vector<std::uint32_t> batch_keys, batch_ids;
   std::vector<std::uint64_t> batch_hashes, batch_discoveries;
   std::vector<double> batch_values;
+  std::size_t batched = 0;  // records in the batch
 };
 
 CellLevel ordered_level(Arrivals& a, const std::vector<std::uint32_t>& global, std::vector<std::uint32_t>& ids,
