@@ -227,7 +227,7 @@ void DistributedWalk::add_seed(std::span<const double> seed, bool must_succeed) 
         FaceEnumerator faces(s, k_);
         for (Simplex tau; faces.next(tau);) {
           discovery_ = tests++;
-          if (owner_rank(tau.y.data(), d_, ranks_) != rank_) continue;  // (its owner tests it)
+          if (last_owner_.of(tau.y.data()) != rank_) continue;  // (its owner tests it)
           const Found f = classify(tau);
           inside_hit |= f.kind == Kind::inside;
           outside_hit |= f.kind == Kind::outside;

@@ -126,7 +126,7 @@ void DistributedWalk::fetch_vertex_values(const std::vector<std::int32_t>& verti
       const auto* key = reinterpret_cast<const std::uint32_t*>(v);
       const std::uint64_t h = hashes[i];
       if (known_vertices_.find(key, h) != PackedKeyIndex::kAbsent) continue;
-      const int owner = owner_rank(v, d_, ranks_);
+      const int owner = last_owner_.of(v);
       if (owner == rank_)
         evaluate_here(v, scratch.data());
       else if (asked.insert(key, h).second)
