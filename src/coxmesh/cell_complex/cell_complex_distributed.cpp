@@ -52,9 +52,15 @@ std::vector<std::uint32_t> places_in_order(const std::vector<std::uint64_t>& key
 std::uint64_t number_by_keys(const std::vector<std::uint64_t>& keys, std::uint64_t n, Communicator& comm,
                              std::vector<std::uint32_t>& ids) {
   const int ranks = comm.size();
-  const auto range_of = [&](std::uint64_t key) { return static_cast<int>((key >> 32) * ranks / n); };
+  // Each key's range once (a division), the messages sized from their counts and written in place.
+  std::vector<int> range(keys.size());
+  std::vector<std::size_t> sizes(ranks, 0);
+  for (std::size_t i = 0; i < keys.size(); ++i) ++sizes[range[i] = static_cast<int>((keys[i] >> 32) * ranks / n)];
   std::vector<std::vector<std::byte>> out(ranks);
-  for (const std::uint64_t& key : keys) put(out[range_of(key)], &key, 1);
+  std::vector<std::byte*> to(ranks);
+  for (int r = 0; r < ranks; ++r) out[r].resize(sizes[r] * sizeof(std::uint64_t)), to[r] = out[r].data();
+  for (std::size_t i = 0; i < keys.size(); ++i)
+    std::memcpy(to[range[i]], &keys[i], sizeof(std::uint64_t)), to[range[i]] += sizeof(std::uint64_t);
   std::vector<std::size_t> counts;
   const std::vector<std::byte> in = comm.exchange(out, counts);
   const std::vector<std::size_t> from = counts;  // bytes of keys from each rank
@@ -86,7 +92,7 @@ std::uint64_t number_by_keys(const std::vector<std::uint64_t>& keys, std::uint64
   std::vector<const std::byte*> reply(ranks);  // the next id from each range's rank
   for (int r = 0; r < ranks; ++r) reply[r] = r == 0 ? back.data() : reply[r - 1] + counts[r - 1];
   ids.resize(keys.size());
-  for (std::size_t i = 0; i < keys.size(); ++i) take(reply[range_of(keys[i])], &ids[i], 1);
+  for (std::size_t i = 0; i < keys.size(); ++i) take(reply[range[i]], &ids[i], 1);
   return std::accumulate(totals.begin(), totals.end(), std::uint64_t{0});
 }
 
