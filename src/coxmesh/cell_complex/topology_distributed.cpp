@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cstring>
 #include <exception>
+#include <random>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -550,9 +551,25 @@ TopologyReport analyze_topology_distributed(CellComplexPart&& part, Communicator
     });
   }
 
-  // Closed: every edge cell has two distinct ends, and the facets of the facets of every cell
-  // meet in pairs (topology.cpp). The facet lists of facets held elsewhere are fetched.
+  // Closed: every edge cell has two distinct ends, and the boundary of the boundary of every cell
+  // vanishes, checked on fingerprints with rank 0's seed as in one process (topology.cpp): each
+  // rank computes the fingerprints of its cells below the top, and fetches those of the facets held
+  // elsewhere (8 bytes each), then checks its cells.
   {
+    Bytes seed_bytes;
+    if (comm.rank() == 0) {
+      std::random_device entropy;
+      const std::uint64_t drawn = std::uint64_t{entropy()} << 32 ^ entropy();
+      put(seed_bytes, &drawn, 1);
+    }
+    comm.broadcast(seed_bytes);
+    std::uint64_t seed = 0;
+    const std::byte* seed_at = seed_bytes.data();
+    take(seed_at, &seed, 1);
+    const int top = layout.levels() - 2;  // (interior m-cells: a facet of no cell)
+    std::vector<std::uint64_t> fingerprint(level_begin(top), 0);
+    for (std::uint64_t i = level_begin(2); i < level_begin(top); ++i)
+      for (std::uint32_t g : ranges.of(i)) fingerprint[i] ^= closedness_label(seed, g);
     std::vector<std::uint32_t> wanted;
     for (int l = 4; l < layout.levels(); ++l)
       for (std::uint64_t i = layout.local_start[l]; i < layout.local_start[l + 1]; ++i)
@@ -565,32 +582,25 @@ TopologyReport analyze_topology_distributed(CellComplexPart&& part, Communicator
     const std::vector<std::vector<std::uint32_t>> asked = by_owner(wanted, layout);
     wanted = {};
     const Bytes answers = ask(comm, layout, asked, [&](std::uint32_t i, Bytes& out) {
-      const std::uint32_t count = ranges.offsets[i + 1] - ranges.offsets[i];
-      put(out, &count, 1);
-      put(out, ranges.facets.data() + ranges.offsets[i], count);
+      const std::uint64_t none = 0;  // (a top cell is no facet: not asked for)
+      put(out, i < fingerprint.size() ? &fingerprint[i] : &none, 1);
     });
     std::string problem;
     std::uint64_t key = 0;
     agreed(comm, [&] {
-      std::vector<std::pair<std::uint32_t, std::uint32_t>> ghost;  // (global id, its list in `words`)
-      std::vector<std::uint32_t> words(answers.size() / sizeof(std::uint32_t));
-      if (!words.empty()) std::memcpy(words.data(), answers.data(), answers.size());
-      std::size_t at = 0;
+      std::vector<std::pair<std::uint32_t, std::uint64_t>> ghost;  // (global id, its fingerprint)
+      const std::byte* at = answers.data();
       for (const auto& from : asked)
-        for (std::uint32_t g : from) ghost.emplace_back(g, static_cast<std::uint32_t>(at)), at += 1 + words[at];
+        for (std::uint32_t g : from) {
+          std::uint64_t x;
+          take(at, &x, 1);
+          ghost.emplace_back(g, x);
+        }
       std::sort(ghost.begin(), ghost.end());
       // (from: the lowest level g may be of)
-      const auto facets_of = [&](std::uint32_t g, int from) -> std::span<const std::uint32_t> {
-        if (const std::uint32_t f = layout.local(g, from); f != kRemote) return ranges.of(f);
-        const auto it = std::lower_bound(ghost.begin(), ghost.end(), std::make_pair(g, std::uint32_t{0}));
-        return {words.data() + it->second + 1, words[it->second]};
-      };
-      // Per ridge (by global id) the parity of its count so far, the ridges met listed to clear it
-      // again (no sort per cell): exact, where one process compares fingerprints (topology.cpp).
-      std::vector<std::uint8_t> odd(layout.total(), 0);
-      std::vector<std::uint32_t> ridges;
-      const auto toggle = [&](std::uint32_t e) {
-        if ((odd[e] ^= 1)) ridges.push_back(e);
+      const auto fingerprint_of = [&](std::uint32_t g, int from) {
+        if (const std::uint32_t f = layout.local(g, from); f != kRemote) return fingerprint[f];
+        return std::lower_bound(ghost.begin(), ghost.end(), std::make_pair(g, std::uint64_t{0}))->second;
       };
       for (int l = 2; l < layout.levels(); ++l) {
         const int j = l / 2;
@@ -606,12 +616,10 @@ TopologyReport analyze_topology_distributed(CellComplexPart&& part, Communicator
             else if (facets[0] == facets[1])
               why = edge + " has the same vertex at both ends";
           } else {
-            ridges.clear();
-            for (std::uint32_t f : facets)
-              for (std::uint32_t e : facets_of(f, l - 2)) toggle(e);
-            bool closed = true;
-            for (std::uint32_t e : ridges) closed &= odd[e] == 0, odd[e] = 0;
-            if (!closed) why = "a " + std::to_string(j) + "-cell is not closed (a face of its boundary is not shared)";
+            std::uint64_t boundary_of_boundary = 0;
+            for (std::uint32_t f : facets) boundary_of_boundary ^= fingerprint_of(f, l - 2);
+            if (boundary_of_boundary != 0)
+              why = "a " + std::to_string(j) + "-cell is not closed (a face of its boundary is not shared)";
           }
           if (!why.empty()) {  // (the first of this level here; a level before it in the order may fail too)
             const std::uint64_t k = check_order(l, layout.lo(l) + (i - layout.local_start[l]));
