@@ -246,6 +246,60 @@ TEST(Cofaces, PackedCofacetsInEnumeratorOrderUpToTheLargestDimension) {
     }
 }
 
+// for_each_cofacet_vertex gives, once per cofacet, the vertex it adds to τ: the same list as the
+// cofacets of CofaceEnumerator, up to order.
+void expect_cofacet_vertices_as_enumerated(const Simplex& s) {
+  const int d = s.d;
+  std::vector<std::vector<std::int32_t>> expected, found;
+  CofaceEnumerator e(s, s.k + 1);
+  std::vector<std::int32_t> v(d);
+  for (Simplex c; e.next(c);) {
+    c.vertex(extra_vertex_index(s, c), v.data());
+    expected.push_back(v);
+  }
+  for_each_cofacet_vertex(s, [&](const std::int32_t* w) { found.emplace_back(w, w + d); });
+  std::sort(expected.begin(), expected.end());
+  std::sort(found.begin(), found.end());
+  EXPECT_EQ(found, expected) << s;
+}
+
+TEST(Cofaces, CofacetVerticesForEveryTypeUpToDimension7) {
+  for (int d = 1; d <= 7; ++d)
+    for (unsigned cuts = 0; cuts < (1u << d); ++cuts) {
+      std::vector<std::vector<int>> blocks = blocks_cut_at(d, cuts);
+      std::vector<std::int32_t> y(d);
+      for (int i = 0; i < d; ++i) y[i] = (i % 3 == 0 ? -1 : 1) * (i + 1) * 7 - (i % 2);
+      if (cuts + 1 == (1u << d)) {  // k = d: no cofacet, no vertex
+        int emitted = 0;
+        for_each_cofacet_vertex(Simplex::from_partition(y, blocks), [&](const std::int32_t*) { ++emitted; });
+        EXPECT_EQ(emitted, 0);
+        continue;
+      }
+      for (std::size_t r = 0; r < blocks.size(); ++r) {
+        expect_cofacet_vertices_as_enumerated(Simplex::from_partition(y, blocks));
+        if (blocks.size() >= 3) std::rotate(blocks.begin(), blocks.begin() + 1, blocks.end() - 1);
+      }
+    }
+}
+
+TEST(Cofaces, CofacetVerticesUpToTheLargestDimension) {
+  std::mt19937 rng(5);
+  for (int d : {8, 12, 20, 31})
+    for (int trial = 0; trial < 20; ++trial) {
+      std::vector<std::int32_t> y(d);
+      for (auto& c : y) c = std::uniform_int_distribution<int>(-1000, 1000)(rng);
+      std::vector<int> order(d);
+      for (int i = 0; i < d; ++i) order[i] = i;
+      std::shuffle(order.begin(), order.end(), rng);
+      const int k = d - std::uniform_int_distribution<int>(1, 6)(rng);  // (blocks of a few elements)
+      std::vector<std::vector<int>> blocks(k + 1);
+      blocks[k].push_back(d);
+      for (int b = 0; b < k; ++b) blocks[b].push_back(order[b]);
+      for (int i = k; i < d; ++i) blocks[std::uniform_int_distribution<int>(0, k)(rng)].push_back(order[i]);
+      expect_cofacet_vertices_as_enumerated(Simplex::from_partition(y, blocks));
+    }
+}
+
 TEST(FacesCofaces, BruteForceOnABoxUpToDimension4) {
   for (int d = 1; d <= 4; ++d) {
     // Simplices with minimal vertex in [-1, 1]^d; queries with minimal vertex 0 have all their

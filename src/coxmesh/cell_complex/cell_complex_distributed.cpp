@@ -52,9 +52,15 @@ std::vector<std::uint32_t> places_in_order(const std::vector<std::uint64_t>& key
 std::uint64_t number_by_keys(const std::vector<std::uint64_t>& keys, std::uint64_t n, Communicator& comm,
                              std::vector<std::uint32_t>& ids) {
   const int ranks = comm.size();
-  const auto range_of = [&](std::uint64_t key) { return static_cast<int>((key >> 32) * ranks / n); };
+  // Each key's range once (a division), the messages sized from their counts and written in place.
+  std::vector<int> range(keys.size());
+  std::vector<std::size_t> sizes(ranks, 0);
+  for (std::size_t i = 0; i < keys.size(); ++i) ++sizes[range[i] = static_cast<int>((keys[i] >> 32) * ranks / n)];
   std::vector<std::vector<std::byte>> out(ranks);
-  for (const std::uint64_t& key : keys) put(out[range_of(key)], &key, 1);
+  std::vector<std::byte*> to(ranks);
+  for (int r = 0; r < ranks; ++r) out[r].resize(sizes[r] * sizeof(std::uint64_t)), to[r] = out[r].data();
+  for (std::size_t i = 0; i < keys.size(); ++i)
+    std::memcpy(to[range[i]], &keys[i], sizeof(std::uint64_t)), to[range[i]] += sizeof(std::uint64_t);
   std::vector<std::size_t> counts;
   const std::vector<std::byte> in = comm.exchange(out, counts);
   const std::vector<std::size_t> from = counts;  // bytes of keys from each rank
@@ -86,7 +92,7 @@ std::uint64_t number_by_keys(const std::vector<std::uint64_t>& keys, std::uint64
   std::vector<const std::byte*> reply(ranks);  // the next id from each range's rank
   for (int r = 0; r < ranks; ++r) reply[r] = r == 0 ? back.data() : reply[r - 1] + counts[r - 1];
   ids.resize(keys.size());
-  for (std::size_t i = 0; i < keys.size(); ++i) take(reply[range_of(keys[i])], &ids[i], 1);
+  for (std::size_t i = 0; i < keys.size(); ++i) take(reply[range[i]], &ids[i], 1);
   return std::accumulate(totals.begin(), totals.end(), std::uint64_t{0});
 }
 
@@ -96,21 +102,33 @@ std::uint64_t number_by_keys(const std::vector<std::uint64_t>& keys, std::uint64
 // others arrive in one exchange. Records are inserted in batches, the table's slots fetched ahead
 // (insert_runs): a level's cells are millions of random look-ups.
 struct Arrivals {
-  Arrivals(int words, int extra, bool facets) : found(words), extra(extra), facets(facets) {}
+  Arrivals(int words, int extra, bool facets)
+      : found(words),
+        extra(extra),
+        facets(facets),
+        batch_keys(kBatch * words),
+        batch_ids(kBatch),
+        batch_hashes(kBatch),
+        batch_discoveries(kBatch),
+        batch_values(kBatch * extra) {}
 
   void add(const std::uint32_t* key, std::uint64_t discovery, const double* x) {
+    add(key, hash_words(key, found.words()), discovery, x);
+  }
+  void add(const std::uint32_t* key, std::uint64_t hash, std::uint64_t discovery, const double* x) {
     const int words = found.words();
-    for (int i = 0; i < words; ++i) batch_keys.push_back(key[i]);  // (a few words: no call to copy them)
-    batch_hashes.push_back(hash_words(key, words));
-    batch_discoveries.push_back(discovery);
-    batch_values.insert(batch_values.end(), x, x + extra);
-    if (batch_hashes.size() == kBatch) flush();
+    // (into arrays of a batch's size: a few words each, no growth to check)
+    std::uint32_t* to = batch_keys.data() + batched * words;
+    for (int i = 0; i < words; ++i) to[i] = key[i];
+    batch_hashes[batched] = hash;
+    batch_discoveries[batched] = discovery;
+    for (int i = 0; i < extra; ++i) batch_values[batched * extra + i] = x[i];
+    if (++batched == kBatch) flush();
   }
   // Inserts the batch: ids in the order of add(), as one insert per record would give them.
   void flush() {
-    const std::size_t n = batch_hashes.size();
+    const std::size_t n = batched;
     if (n == 0) return;
-    batch_ids.resize(n);
     const KeyRun run{batch_keys.data(), batch_hashes.data(), n, batch_ids.data()};
     found.insert_runs({&run, 1});
     for (std::size_t i = 0; i < n; ++i) {
@@ -126,12 +144,27 @@ struct Arrivals {
       }
       if (facets) incidences.push_back(std::uint64_t{id} << 32 | discovery >> 32);
     }
-    batch_keys.clear(), batch_hashes.clear(), batch_discoveries.clear(), batch_values.clear();
+    batched = 0;
+    if (expected > n) {  // room for the level at the first batch's rate: no copies as it grows
+      const std::size_t cells =
+          std::min<std::size_t>(found.size() * (expected / n) + found.size(), PackedKeyIndex::kMaxEntries);
+      found.reserve(cells), first.reserve(cells), values.reserve(cells * extra);
+      if (facets) incidences.reserve(expected);
+    }
+    expected = 0;
   }
   // A record for `owner`: added here, or appended to its message.
   void send(std::vector<std::vector<std::byte>>& out, int owner, int rank, const std::uint32_t* key,
             std::uint64_t discovery, const double* x) {
     if (owner == rank) return add(key, discovery, x);
+    append(out[owner], key, discovery, x);
+  }
+  void send(std::vector<std::vector<std::byte>>& out, int owner, int rank, const std::uint32_t* key, std::uint64_t hash,
+            std::uint64_t discovery, const double* x) {
+    if (owner == rank) return add(key, hash, discovery, x);
+    append(out[owner], key, discovery, x);
+  }
+  void append(std::vector<std::byte>& out, const std::uint32_t* key, std::uint64_t discovery, const double* x) const {
     std::byte record[sizeof(std::uint32_t) * packed_words(kMaxDimension) + sizeof(std::uint64_t) +
                      sizeof(double) * kMaxDimension];  // (one append per record)
     std::byte* at = record;
@@ -141,10 +174,11 @@ struct Arrivals {
     write(key, static_cast<std::size_t>(found.words()));
     write(&discovery, 1);
     write(x, static_cast<std::size_t>(extra));
-    out[owner].insert(out[owner].end(), record, at);
+    out.insert(out.end(), record, at);
   }
 
   static constexpr std::size_t kBatch = 4096;
+  std::size_t expected = 0;  // records this rank will get, if known (an estimate): sizes the arrays after one batch
   PackedKeyIndex found;
   int extra;
   bool facets;
@@ -153,6 +187,7 @@ struct Arrivals {
   std::vector<std::uint32_t> batch_keys, batch_ids;
   std::vector<std::uint64_t> batch_hashes, batch_discoveries;
   std::vector<double> batch_values;
+  std::size_t batched = 0;  // records in the batch
 };
 
 CellLevel ordered_level(Arrivals& a, const std::vector<std::uint32_t>& global, std::vector<std::uint32_t>& ids,
@@ -263,20 +298,25 @@ CellLevel next_level(const CellLevel& prev, const std::vector<std::uint32_t>& pr
   const int words = packed_words(d), ranks = comm.size();
   std::vector<std::vector<std::byte>> out(ranks);
   Arrivals arrivals(words, 0, true);
-  const double no_values = 0;  // (no extra values at this level)
-  CofaceEnumerator cofaces;
-  std::uint32_t key[packed_words(kMaxDimension)];
+  const double no_values = 0;      // (no extra values at this level)
   LastOwner last_owner(d, ranks);  // (a cell's cofaces mostly share their minimal vertex)
+  COXMESH_ASSERT(prev.size() == 0 || prev.simplices.simplex(0, d).k + 1 == l);  // (cofacets: PackedCofacets)
+  {  // the records this rank makes, from the first cells' cofacets (the few from other ranks aside)
+    constexpr std::uint32_t kSample = 256;
+    std::size_t sampled = 0;
+    const std::uint32_t n = std::min(prev.size(), kSample);
+    for (std::uint32_t c = 0; c < n; ++c) sampled += PackedCofacets(prev.simplices.key(c), d).count();
+    if (n > 0) arrivals.expected = sampled * prev.size() / n;
+  }
   agreed(comm, [&] {
     for (std::uint32_t c = 0; c < prev.size(); ++c) {
       std::uint64_t discovery = std::uint64_t{prev_ids[c]} << 32;
-      cofaces.reset(prev.simplices.simplex(c, d), l);
-      while (const Simplex* nu = cofaces.next()) {
-        pack(*nu, key);
+      // (straight from the packed keys, with their hashes, as the one-process complex enumerates them)
+      PackedCofacets(prev.simplices.key(c), d).for_each([&](const std::uint32_t* nu, std::uint64_t hash) {
         // (y, the minimal vertex, first in the key)
-        arrivals.send(out, last_owner.of(reinterpret_cast<const std::int32_t*>(key)), comm.rank(), key, discovery++,
+        arrivals.send(out, last_owner.of(reinterpret_cast<const std::int32_t*>(nu)), comm.rank(), nu, hash, discovery++,
                       &no_values);
-      }
+      });
     }
   });
   return settle(arrivals, out, prev_size, comm, ids, size, nullptr);

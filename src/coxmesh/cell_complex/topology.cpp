@@ -33,12 +33,7 @@ std::string check_closed(const CellComplex& cc) {
   const GlobalCells cells(cc);
   std::random_device entropy;
   const std::uint64_t seed = std::uint64_t{entropy()} << 32 ^ entropy();
-  const auto label = [seed](std::size_t g) {  // (splitmix64's mix of the seed and the global id)
-    std::uint64_t z = seed + (g + 1) * 0x9E3779B97F4A7C15ull;
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  };
+  const auto label = [seed](std::size_t g) { return closedness_label(seed, g); };
   std::vector<std::uint64_t> below, fingerprint;  // per cell of levels j − 1 and j of this kind
   for (int kind = 0; kind < 2; ++kind) {
     const auto& levels = kind ? cc.boundary : cc.interior;

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cstring>
 #include <exception>
+#include <random>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -112,25 +113,46 @@ Ranges redistribute(CellComplexPart& part, const Layout& layout, Communicator& c
   Ranges out;
   part.cells.vertices = PointArray{};
   part.cells.boundary_vertices = PointArray{};
-  std::vector<std::uint32_t> record;
+  const int ranks = comm.size();
+  std::vector<int> owners;  // of each cell of the level
+  std::vector<std::size_t> words(ranks);
   for (int l = 0; l < layout.levels(); ++l) {
     const int j = l / 2;
     const bool boundary = l % 2 == 1;
-    std::vector<Bytes> outgoing(comm.size());
+    std::vector<Bytes> outgoing(ranks);
     auto& levels = boundary ? part.cells.boundary : part.cells.interior;
     auto& all_ids = boundary ? part.boundary_ids : part.interior_ids;
     if (j < static_cast<int>(levels.size()) && j < static_cast<int>(all_ids.size())) {
       CellLevel& level = levels[j];
       const std::vector<std::uint32_t>& ids = all_ids[j];
+      const bool boundary_facets = !boundary && j > 0 && !level.boundary_facet.empty();
+      const auto facet_count = [&](std::uint32_t c) -> std::uint32_t {
+        if (j == 0) return 0;
+        return static_cast<std::uint32_t>(level.facets(c).size()) +
+               (boundary_facets && level.boundary_facet[c] != CellLevel::kNone ? 1u : 0u);
+      };
+      // Each message sized first, then written in place: a record is (id, count, facets…).
+      owners.resize(ids.size());
+      std::fill(words.begin(), words.end(), 0);
       for (std::uint32_t c = 0; c < ids.size(); ++c) {
-        record.assign({ids[c], 0});
-        if (j > 0) {
-          for (std::uint32_t f : level.facets(c)) record.push_back(static_cast<std::uint32_t>(layout.start[l - 2] + f));
-          if (!boundary && !level.boundary_facet.empty() && level.boundary_facet[c] != CellLevel::kNone)
-            record.push_back(static_cast<std::uint32_t>(layout.start[l - 1] + level.boundary_facet[c]));
-        }
-        record[1] = static_cast<std::uint32_t>(record.size() - 2);
-        put(outgoing[layout.owner(l, ids[c])], record.data(), record.size());
+        owners[c] = layout.owner(l, ids[c]);
+        words[owners[c]] += 2 + facet_count(c);
+      }
+      std::vector<std::uint32_t*> at(ranks);
+      for (int r = 0; r < ranks; ++r) {
+        outgoing[r].resize(words[r] * sizeof(std::uint32_t));
+        at[r] = reinterpret_cast<std::uint32_t*>(outgoing[r].data());  // (operator new: aligned)
+      }
+      const auto below = static_cast<std::uint32_t>(layout.start[std::max(l - 2, 0)]);
+      const auto boundary_below = static_cast<std::uint32_t>(layout.start[std::max(l - 1, 0)]);
+      for (std::uint32_t c = 0; c < ids.size(); ++c) {
+        std::uint32_t*& w = at[owners[c]];
+        *w++ = ids[c];
+        *w++ = facet_count(c);
+        if (j == 0) continue;
+        for (std::uint32_t f : level.facets(c)) *w++ = below + f;
+        if (boundary_facets && level.boundary_facet[c] != CellLevel::kNone)
+          *w++ = boundary_below + level.boundary_facet[c];
       }
       level = CellLevel{};
       all_ids[j] = {};
@@ -141,18 +163,22 @@ Ranges redistribute(CellComplexPart& part, const Layout& layout, Communicator& c
     agreed(comm, [&] {
       const std::size_t base = layout.local_start[l], n = layout.hi(l) - layout.lo(l);
       out.offsets.resize(base + n + 1, 0);
-      std::vector<std::uint32_t> words(in.size() / sizeof(std::uint32_t));
-      if (!words.empty()) std::memcpy(words.data(), in.data(), in.size());
+      const std::size_t size = in.size() / sizeof(std::uint32_t);
+      const auto word = [&](std::size_t at) {
+        std::uint32_t x;
+        std::memcpy(&x, in.data() + at * sizeof x, sizeof x);
+        return x;
+      };
       std::size_t total = 0;
-      for (std::size_t at = 0; at < words.size(); at += 2 + words[at + 1]) {
-        out.offsets[base + 1 + (words[at] - layout.lo(l))] = words[at + 1];
-        total += words[at + 1];
+      for (std::size_t at = 0; at < size; at += 2 + word(at + 1)) {
+        out.offsets[base + 1 + (word(at) - layout.lo(l))] = word(at + 1);
+        total += word(at + 1);
       }
       for (std::size_t i = 0; i < n; ++i) out.offsets[base + 1 + i] += out.offsets[base + i];
       out.facets.resize(out.facets.size() + total);
-      for (std::size_t at = 0; at < words.size(); at += 2 + words[at + 1])
-        std::copy_n(words.begin() + static_cast<std::ptrdiff_t>(at + 2), words[at + 1],
-                    out.facets.begin() + out.offsets[base + (words[at] - layout.lo(l))]);
+      for (std::size_t at = 0; at < size; at += 2 + word(at + 1))
+        std::memcpy(out.facets.data() + out.offsets[base + (word(at) - layout.lo(l))],
+                    in.data() + (at + 2) * sizeof(std::uint32_t), word(at + 1) * sizeof(std::uint32_t));
     });
   }
   part = CellComplexPart{};
@@ -525,9 +551,25 @@ TopologyReport analyze_topology_distributed(CellComplexPart&& part, Communicator
     });
   }
 
-  // Closed: every edge cell has two distinct ends, and the facets of the facets of every cell
-  // meet in pairs (topology.cpp). The facet lists of facets held elsewhere are fetched.
+  // Closed: every edge cell has two distinct ends, and the boundary of the boundary of every cell
+  // vanishes, checked on fingerprints with rank 0's seed as in one process (topology.cpp): each
+  // rank computes the fingerprints of its cells below the top, and fetches those of the facets held
+  // elsewhere (8 bytes each), then checks its cells.
   {
+    Bytes seed_bytes;
+    if (comm.rank() == 0) {
+      std::random_device entropy;
+      const std::uint64_t drawn = std::uint64_t{entropy()} << 32 ^ entropy();
+      put(seed_bytes, &drawn, 1);
+    }
+    comm.broadcast(seed_bytes);
+    std::uint64_t seed = 0;
+    const std::byte* seed_at = seed_bytes.data();
+    take(seed_at, &seed, 1);
+    const int top = layout.levels() - 2;  // (interior m-cells: a facet of no cell)
+    std::vector<std::uint64_t> fingerprint(level_begin(top), 0);
+    for (std::uint64_t i = level_begin(2); i < level_begin(top); ++i)
+      for (std::uint32_t g : ranges.of(i)) fingerprint[i] ^= closedness_label(seed, g);
     std::vector<std::uint32_t> wanted;
     for (int l = 4; l < layout.levels(); ++l)
       for (std::uint64_t i = layout.local_start[l]; i < layout.local_start[l + 1]; ++i)
@@ -540,32 +582,25 @@ TopologyReport analyze_topology_distributed(CellComplexPart&& part, Communicator
     const std::vector<std::vector<std::uint32_t>> asked = by_owner(wanted, layout);
     wanted = {};
     const Bytes answers = ask(comm, layout, asked, [&](std::uint32_t i, Bytes& out) {
-      const std::uint32_t count = ranges.offsets[i + 1] - ranges.offsets[i];
-      put(out, &count, 1);
-      put(out, ranges.facets.data() + ranges.offsets[i], count);
+      const std::uint64_t none = 0;  // (a top cell is no facet: not asked for)
+      put(out, i < fingerprint.size() ? &fingerprint[i] : &none, 1);
     });
     std::string problem;
     std::uint64_t key = 0;
     agreed(comm, [&] {
-      std::vector<std::pair<std::uint32_t, std::uint32_t>> ghost;  // (global id, its list in `words`)
-      std::vector<std::uint32_t> words(answers.size() / sizeof(std::uint32_t));
-      if (!words.empty()) std::memcpy(words.data(), answers.data(), answers.size());
-      std::size_t at = 0;
+      std::vector<std::pair<std::uint32_t, std::uint64_t>> ghost;  // (global id, its fingerprint)
+      const std::byte* at = answers.data();
       for (const auto& from : asked)
-        for (std::uint32_t g : from) ghost.emplace_back(g, static_cast<std::uint32_t>(at)), at += 1 + words[at];
+        for (std::uint32_t g : from) {
+          std::uint64_t x;
+          take(at, &x, 1);
+          ghost.emplace_back(g, x);
+        }
       std::sort(ghost.begin(), ghost.end());
       // (from: the lowest level g may be of)
-      const auto facets_of = [&](std::uint32_t g, int from) -> std::span<const std::uint32_t> {
-        if (const std::uint32_t f = layout.local(g, from); f != kRemote) return ranges.of(f);
-        const auto it = std::lower_bound(ghost.begin(), ghost.end(), std::make_pair(g, std::uint32_t{0}));
-        return {words.data() + it->second + 1, words[it->second]};
-      };
-      // Per ridge (by global id) the parity of its count so far, the ridges met listed to clear it
-      // again (no sort per cell): exact, where one process compares fingerprints (topology.cpp).
-      std::vector<std::uint8_t> odd(layout.total(), 0);
-      std::vector<std::uint32_t> ridges;
-      const auto toggle = [&](std::uint32_t e) {
-        if ((odd[e] ^= 1)) ridges.push_back(e);
+      const auto fingerprint_of = [&](std::uint32_t g, int from) {
+        if (const std::uint32_t f = layout.local(g, from); f != kRemote) return fingerprint[f];
+        return std::lower_bound(ghost.begin(), ghost.end(), std::make_pair(g, std::uint64_t{0}))->second;
       };
       for (int l = 2; l < layout.levels(); ++l) {
         const int j = l / 2;
@@ -581,12 +616,10 @@ TopologyReport analyze_topology_distributed(CellComplexPart&& part, Communicator
             else if (facets[0] == facets[1])
               why = edge + " has the same vertex at both ends";
           } else {
-            ridges.clear();
-            for (std::uint32_t f : facets)
-              for (std::uint32_t e : facets_of(f, l - 2)) toggle(e);
-            bool closed = true;
-            for (std::uint32_t e : ridges) closed &= odd[e] == 0, odd[e] = 0;
-            if (!closed) why = "a " + std::to_string(j) + "-cell is not closed (a face of its boundary is not shared)";
+            std::uint64_t boundary_of_boundary = 0;
+            for (std::uint32_t f : facets) boundary_of_boundary ^= fingerprint_of(f, l - 2);
+            if (boundary_of_boundary != 0)
+              why = "a " + std::to_string(j) + "-cell is not closed (a face of its boundary is not shared)";
           }
           if (!why.empty()) {  // (the first of this level here; a level before it in the order may fail too)
             const std::uint64_t k = check_order(l, layout.lo(l) + (i - layout.local_start[l]));

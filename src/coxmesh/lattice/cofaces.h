@@ -186,6 +186,45 @@ void PackedCofacets::for_each(Emit&& emit) const {
   }
 }
 
+/// The vertex that each cofacet of τ adds to τ's vertices, once per cofacet (thesis §3.5), in an
+/// unspecified order: emit(const std::int32_t* v) with a view of d coordinates, valid during the
+/// call. A cofacet splits a block ω_b of τ into a non-empty part A put first and the rest; its new
+/// vertex is v_b + e(A) (e_d = −(1, …, 1)). The parts A of each block are taken in Gray-code order,
+/// so one coordinate (all of them for d) changes per vertex: no cofacet is built. For the vertices
+/// a walk will read around τ (the distributed walk fetches their values before a level).
+template <class Emit>
+void for_each_cofacet_vertex(const Simplex& tau, Emit&& emit) {
+  const int d = tau.d, k = tau.k;
+  std::uint32_t members[kMaxDimension + 1];  // per block, its elements as a bit set
+  for (int b = 0; b <= k; ++b) members[b] = 0;
+  for (int i = 0; i <= d; ++i) members[tau.block[i]] |= std::uint32_t{1} << i;
+  std::int32_t v[kMaxDimension];
+  for (int b = 0; b <= k; ++b) {
+    std::uint8_t element[kMaxDimension + 1];
+    int n = 0;
+    for (std::uint32_t rest = members[b]; rest != 0; rest &= rest - 1)
+      element[n++] = static_cast<std::uint8_t>(std::countr_zero(rest));
+    if (n < 2) continue;
+    tau.vertex(b, v);
+    const auto move = [&](int i, std::int32_t step) {  // v += step · e_i
+      if (i < d)
+        v[i] += step;
+      else
+        for (int c = 0; c < d; ++c) v[c] -= step;
+    };
+    // Step s puts in or takes out element ctz(s): the parts are the Gray codes s ^ (s >> 1), every
+    // non-empty subset once; the whole block (no cofacet) is skipped.
+    const std::uint64_t all = (std::uint64_t{1} << n) - 1;
+    std::uint64_t part = 0;
+    for (std::uint64_t step = 1; step <= all; ++step) {
+      const int t = std::countr_zero(step);
+      move(element[t], (part >> t & 1) ? -1 : 1);
+      part ^= std::uint64_t{1} << t;
+      if (part != all) emit(static_cast<const std::int32_t*>(v));
+    }
+  }
+}
+
 /// Number of l-cofaces of τ (thesis §3.5): Σ over cut vectors of Π_i a(n_i, c_i + 1), where
 /// a(n, j) = j!·S(n, j) counts ordered partitions. Throws InputError only if the count, or a term
 /// it needs, exceeds 64 bits (e.g. the 21! maximal cofaces of a vertex in d = 20); cofacet counts

@@ -33,29 +33,30 @@ struct DistributedTraceStats {
 /// vertices a side), so that neighbours mostly share an owner. A simplex belongs to the owner of its
 /// minimal vertex.
 int owner_rank(const std::int32_t* v, int d, int ranks);
-/// owner_rank of the vertex last asked about, hashed again only when another vertex is asked (the
-/// simplices a walk or a level meets in a row mostly share their minimal vertex).
+/// Blocks of about 2^6 lattice vertices (64 in R^3, 2^d from R^5 on): larger ones cut less of the walk
+/// between ranks, smaller ones split a small manifold in high dimension more evenly (SO(3) in R^9:
+/// 60 % of S on one of 2 ranks with blocks of 4^9 vertices, 51 % with 2^9).
+constexpr int owner_block_bits(int d) { return d >= 5 ? 1 : (6 + d / 2) / d; }
+/// owner_rank of the block last asked about, hashed again only when a vertex of another block is
+/// asked (the simplices a walk or a level meets in a row mostly share their minimal vertex, and
+/// neighbouring vertices their block).
 class LastOwner {
  public:
-  LastOwner(int d, int ranks) : d_(d), ranks_(ranks) {}
+  LastOwner(int d, int ranks) : d_(d), ranks_(ranks), bits_(owner_block_bits(d)) {}
   int of(const std::int32_t* v) {
     std::int32_t diff = owner_ < 0;  // (a loop, not memcmp: a call for a few ints)
-    for (int i = 0; i < d_; ++i) diff |= v[i] ^ v_[i];
+    for (int i = 0; i < d_; ++i) diff |= (v[i] >> bits_) ^ block_[i];
     if (diff != 0) {
-      for (int i = 0; i < d_; ++i) v_[i] = v[i];
+      for (int i = 0; i < d_; ++i) block_[i] = v[i] >> bits_;
       owner_ = owner_rank(v, d_, ranks_);
     }
     return owner_;
   }
 
  private:
-  int d_, ranks_, owner_ = -1;
-  std::int32_t v_[kMaxDimension] = {};
+  int d_, ranks_, bits_, owner_ = -1;
+  std::int32_t block_[kMaxDimension] = {};
 };
-/// Blocks of about 2^6 lattice vertices (64 in R^3, 2^d from R^5 on): larger ones cut less of the walk
-/// between ranks, smaller ones split a small manifold in high dimension more evenly (SO(3) in R^9:
-/// 60 % of S on one of 2 ranks with blocks of 4^9 vertices, 51 % with 2^9).
-constexpr int owner_block_bits(int d) { return d >= 5 ? 1 : (6 + d / 2) / d; }
 
 /// Rethrows on every rank the failure of the first rank that failed (nullptr: none here), with its
 /// type (InputError, SeedError, EvaluationError, std::bad_alloc, else std::runtime_error) and

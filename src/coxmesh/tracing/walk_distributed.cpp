@@ -173,7 +173,6 @@ bool DistributedWalk::start_level() {
 void DistributedWalk::walk() {
   std::vector<std::int32_t> vertices;
   std::int32_t v[kMaxDimension];
-  CofaceEnumerator cofacets;
   while (level_global_size_ > 0) {
     std::exception_ptr failure;
     bool go = false;
@@ -190,11 +189,7 @@ void DistributedWalk::walk() {
     for (std::uint32_t i = level_begin_; i < level_end_; ++i) {
       const Simplex tau = mine_.simplex(i, d_);
       for (int j = 0; j <= k_; ++j) tau.vertex(j, v), vertices.insert(vertices.end(), v, v + d_);
-      cofacets.reset(tau, k_ + 1);
-      while (const Simplex* mu = cofacets.next()) {
-        mu->vertex(extra_vertex_index(tau, *mu), v);
-        vertices.insert(vertices.end(), v, v + d_);
-      }
+      for_each_cofacet_vertex(tau, [&](const std::int32_t* w) { vertices.insert(vertices.end(), w, w + d_); });
     }
     fetch_vertex_values(vertices);
     try {
@@ -232,7 +227,7 @@ void DistributedWalk::add_seed(std::span<const double> seed, bool must_succeed) 
         FaceEnumerator faces(s, k_);
         for (Simplex tau; faces.next(tau);) {
           discovery_ = tests++;
-          if (owner_rank(tau.y.data(), d_, ranks_) != rank_) continue;  // (its owner tests it)
+          if (last_owner_.of(tau.y.data()) != rank_) continue;  // (its owner tests it)
           const Found f = classify(tau);
           inside_hit |= f.kind == Kind::inside;
           outside_hit |= f.kind == Kind::outside;

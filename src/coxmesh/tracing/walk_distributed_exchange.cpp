@@ -126,7 +126,7 @@ void DistributedWalk::fetch_vertex_values(const std::vector<std::int32_t>& verti
       const auto* key = reinterpret_cast<const std::uint32_t*>(v);
       const std::uint64_t h = hashes[i];
       if (known_vertices_.find(key, h) != PackedKeyIndex::kAbsent) continue;
-      const int owner = owner_rank(v, d_, ranks_);
+      const int owner = last_owner_.of(v);
       if (owner == rank_)
         evaluate_here(v, scratch.data());
       else if (asked.insert(key, h).second)
@@ -223,10 +223,23 @@ void DistributedWalk::append_level() {
   const std::vector<std::byte> all_bytes = comm_.all_gather(keys, counts);
   std::vector<std::uint64_t> all(all_bytes.size() / sizeof(std::uint64_t));
   if (!all_bytes.empty()) std::memcpy(all.data(), all_bytes.data(), all_bytes.size());
-  std::sort(all.begin(), all.end());
+  // `all` is one increasing run per rank (distinct keys): a key's place in the level is its place in
+  // this rank's run plus, per other run, the keys below it, counted by a pointer that only moves on
+  // (a merge, not a sort of the level on every rank).
+  std::vector<std::size_t> run_begin(ranks_ + 1, 0), below(ranks_, 0);
+  for (int r = 0; r < ranks_; ++r) run_begin[r + 1] = run_begin[r] + counts[r] / sizeof(std::uint64_t);
   level_begin_ = mine_.size();
+  std::size_t place_here = 0;
   for (const std::uint32_t j : order) {
-    const auto position = std::lower_bound(all.begin(), all.end(), next_keys_[j]) - all.begin();
+    const std::uint64_t key = next_keys_[j];
+    std::size_t position = place_here++;
+    for (int r = 0; r < ranks_; ++r) {
+      if (r == rank_) continue;
+      const std::size_t length = run_begin[r + 1] - run_begin[r];
+      const std::uint64_t* run = all.data() + run_begin[r];
+      while (below[r] < length && run[below[r]] < key) ++below[r];
+      position += below[r];
+    }
     mine_.insert(next_.key(j));
     global_ids_.push_back(static_cast<std::uint32_t>(global_size_ + position));
     const double* data = next_data_.data() + static_cast<std::size_t>(j) * (d_ + 1);
