@@ -6,6 +6,7 @@
 
 #include "coxmesh/cell_complex/betti.h"
 #include "coxmesh/cell_complex/global_cells.h"
+#include "coxmesh/util/huge_page_allocator.h"
 
 namespace coxmesh {
 
@@ -39,7 +40,8 @@ std::string check_closed(const CellComplex& cc) {
     z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
     return z ^ (z >> 31);
   };
-  std::vector<std::uint64_t> below, fingerprint;  // per cell of levels j − 1 and j of this kind
+  // Per cell of levels j − 1 and j of this kind (written in full before being read: not zeroed).
+  UninitializedHugeVector<std::uint64_t> below, fingerprint;
   for (int kind = 0; kind < 2; ++kind) {
     const auto& levels = kind ? cc.boundary : cc.interior;
     for (int j = 1; j < static_cast<int>(levels.size()); ++j) {
@@ -47,6 +49,7 @@ std::string check_closed(const CellComplex& cc) {
       fingerprint.resize(level.size());
       const std::size_t facet_first = cells.start(j - 1, kind == 1);
       const bool cut = !kind && !level.boundary_facet.empty();
+      const bool read_above = j + 1 < static_cast<int>(levels.size());  // (the top level's fingerprints: unused)
       for (std::uint32_t c = 0; c < level.size(); ++c) {
         if (j == 1) {
           std::size_t ends[2] = {0, 0}, n = 0;
@@ -60,7 +63,10 @@ std::string check_closed(const CellComplex& cc) {
           return edge + " has the same vertex at both ends";
         }
         std::uint64_t mine = 0, boundary_of_boundary = 0;
-        for (std::uint32_t f : level.facets(c)) mine ^= label(facet_first + f), boundary_of_boundary ^= below[f];
+        const auto facets = level.facets(c);
+        for (std::uint32_t f : facets) boundary_of_boundary ^= below[f];
+        if (read_above)
+          for (std::uint32_t f : facets) mine ^= label(facet_first + f);
         if (cut && level.boundary_facet[c] != CellLevel::kNone) {  // (a boundary cell: its fingerprint here)
           const std::uint32_t f = level.boundary_facet[c];
           mine ^= label(cells.start(j - 1, true) + f);
