@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <bit>
+#include <memory>
 #include <random>
 
 #include "coxmesh/cell_complex/betti.h"
 #include "coxmesh/cell_complex/global_cells.h"
-#include "coxmesh/util/huge_page_allocator.h"
 
 namespace coxmesh {
 
@@ -40,13 +40,14 @@ std::string check_closed(const CellComplex& cc) {
     z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
     return z ^ (z >> 31);
   };
-  // Per cell of levels j − 1 and j of this kind (written in full before being read: not zeroed).
-  UninitializedHugeVector<std::uint64_t> below, fingerprint;
+  // Per cell of levels j − 1 and j of this kind (written in full before being read: not zeroed;
+  // from the heap, whose pages the complex's building has already touched).
+  std::unique_ptr<std::uint64_t[]> below, fingerprint;
   for (int kind = 0; kind < 2; ++kind) {
     const auto& levels = kind ? cc.boundary : cc.interior;
     for (int j = 1; j < static_cast<int>(levels.size()); ++j) {
       const CellLevel& level = levels[j];
-      fingerprint.resize(level.size());
+      fingerprint = std::make_unique_for_overwrite<std::uint64_t[]>(level.size());
       const std::size_t facet_first = cells.start(j - 1, kind == 1);
       const bool cut = !kind && !level.boundary_facet.empty();
       const bool read_above = j + 1 < static_cast<int>(levels.size());  // (the top level's fingerprints: unused)
@@ -76,7 +77,7 @@ std::string check_closed(const CellComplex& cc) {
           return "a " + std::to_string(j) + "-cell is not closed (a face of its boundary is not shared)";
         fingerprint[c] = mine;
       }
-      below.swap(fingerprint);
+      below = std::move(fingerprint);
     }
   }
   return "";
