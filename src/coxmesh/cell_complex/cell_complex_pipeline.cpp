@@ -72,9 +72,11 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
   const int words = packed_words(d);
   // Level j's simplices are the cofacets of level j − 1's (l = k + j, those have dimension l − 1).
   COXMESH_ASSERT(prev.size() == 0 || prev.simplices.simplex(0, d).k + 1 == l);
-  struct alignas(64) Chunk {  // (padded: neighbouring chunks are filled by different workers)
-    std::vector<std::uint32_t> keys, ids;
-    std::vector<std::uint64_t> hashes;
+  // (padded: neighbouring chunks are filled by different workers; the arrays grow per cell and are
+  // written in full after each resize, so they are not zeroed first: a memset call per cell)
+  struct alignas(64) Chunk {
+    UninitializedHugeVector<std::uint32_t> keys, ids;
+    UninitializedHugeVector<std::uint64_t> hashes;
     std::size_t offset = 0;  // of its incidences
   };
   CellLevel level;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <memory>
 #include <random>
 
 #include "coxmesh/cell_complex/betti.h"
@@ -34,14 +35,17 @@ std::string check_closed(const CellComplex& cc) {
   std::random_device entropy;
   const std::uint64_t seed = std::uint64_t{entropy()} << 32 ^ entropy();
   const auto label = [seed](std::size_t g) { return closedness_label(seed, g); };
-  std::vector<std::uint64_t> below, fingerprint;  // per cell of levels j − 1 and j of this kind
+  // Per cell of levels j − 1 and j of this kind (written in full before being read: not zeroed;
+  // from the heap, whose pages the complex's building has already touched).
+  std::unique_ptr<std::uint64_t[]> below, fingerprint;
   for (int kind = 0; kind < 2; ++kind) {
     const auto& levels = kind ? cc.boundary : cc.interior;
     for (int j = 1; j < static_cast<int>(levels.size()); ++j) {
       const CellLevel& level = levels[j];
-      fingerprint.resize(level.size());
+      fingerprint = std::make_unique_for_overwrite<std::uint64_t[]>(level.size());
       const std::size_t facet_first = cells.start(j - 1, kind == 1);
       const bool cut = !kind && !level.boundary_facet.empty();
+      const bool read_above = j + 1 < static_cast<int>(levels.size());  // (the top level's fingerprints: unused)
       for (std::uint32_t c = 0; c < level.size(); ++c) {
         if (j == 1) {
           std::size_t ends[2] = {0, 0}, n = 0;
@@ -55,7 +59,10 @@ std::string check_closed(const CellComplex& cc) {
           return edge + " has the same vertex at both ends";
         }
         std::uint64_t mine = 0, boundary_of_boundary = 0;
-        for (std::uint32_t f : level.facets(c)) mine ^= label(facet_first + f), boundary_of_boundary ^= below[f];
+        const auto facets = level.facets(c);
+        for (std::uint32_t f : facets) boundary_of_boundary ^= below[f];
+        if (read_above)
+          for (std::uint32_t f : facets) mine ^= label(facet_first + f);
         if (cut && level.boundary_facet[c] != CellLevel::kNone) {  // (a boundary cell: its fingerprint here)
           const std::uint32_t f = level.boundary_facet[c];
           mine ^= label(cells.start(j - 1, true) + f);
@@ -65,7 +72,7 @@ std::string check_closed(const CellComplex& cc) {
           return "a " + std::to_string(j) + "-cell is not closed (a face of its boundary is not shared)";
         fingerprint[c] = mine;
       }
-      below.swap(fingerprint);
+      below = std::move(fingerprint);
     }
   }
   return "";

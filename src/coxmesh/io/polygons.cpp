@@ -149,7 +149,11 @@ Ragged polygon_cycles(const CellComplex& cc, Ragged* cycle_edges) {
       if (closed) {
         // Walk: from the second end of the first edge, repeatedly take the unused edge at the
         // current vertex. A convex polygon has few edges, so the quadratic search is cheap.
-        std::fill_n(in_cycle, n, std::uint8_t{0});
+        // (a constant length for the few on the stack: one store, not a call to memset per polygon)
+        if (n > kFew)
+          std::fill_n(in_cycle, n, std::uint8_t{0});
+        else
+          std::fill_n(few_used, kFew, std::uint8_t{0});
         in_cycle[0] = 1;
         const std::uint32_t start = first[0];
         std::size_t length = 1;
