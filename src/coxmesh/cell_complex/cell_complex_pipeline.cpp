@@ -73,8 +73,9 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
   // Level j's simplices are the cofacets of level j − 1's (l = k + j, those have dimension l − 1).
   COXMESH_ASSERT(prev.size() == 0 || prev.simplices.simplex(0, d).k + 1 == l);
   struct alignas(64) Chunk {  // (padded: neighbouring chunks are filled by different workers)
-    std::vector<std::uint32_t> keys, ids;
-    std::vector<std::uint64_t> hashes;
+    // (not zeroed when they grow: every key, hash and id is written right after)
+    UninitializedHugeVector<std::uint32_t> keys, ids;
+    UninitializedHugeVector<std::uint64_t> hashes;
     std::size_t offset = 0;  // of its incidences
   };
   CellLevel level;
