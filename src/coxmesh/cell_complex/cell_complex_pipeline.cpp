@@ -3,6 +3,7 @@
 // included, for every number of workers (tests/cell_complex/test_cell_complex.cpp).
 #include <algorithm>
 #include <atomic>
+#include <cstring>
 
 #include "coxmesh/cell_complex/next_level.h"
 #include "coxmesh/errors.h"
@@ -105,7 +106,11 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
       std::uint32_t* keys = out.keys.data() + first * words;
       std::uint64_t* hashes = out.hashes.data() + first;
       cofacets.for_each([&](const std::uint32_t* nu, std::uint64_t hash) {
-        for (int i = 0; i < words; ++i) *keys++ = nu[i];
+        // (four words at a time: a loop of single words was an eighth of the enumeration's samples)
+        int i = 0;
+        for (; i + 4 <= words; i += 4) std::memcpy(keys + i, nu + i, 4 * sizeof(std::uint32_t));
+        for (; i < words; ++i) keys[i] = nu[i];
+        keys += words;
         *hashes++ = hash;
       });
     }

@@ -66,6 +66,14 @@ constexpr auto kSlotMultipliers = [] {
   return h >> (64 - kFrontBits);
 }
 
+[[gnu::always_inline]] inline bool ImplicitOracle::front_holds(std::size_t slot, const std::int32_t* v) const {
+  if (!front_used_[slot]) return false;
+  const std::int32_t* front_key = front_keys_.data() + slot * d_;
+  std::int32_t diff = 0;  // (std::equal would call memcmp for a few ints)
+  for (int i = 0; i < d_; ++i) diff |= v[i] ^ front_key[i];
+  return diff == 0;
+}
+
 const double* ImplicitOracle::values_at(const std::int32_t* v) {
   if (!cache_enabled_) {
     evaluate(v, scratch_.data());
@@ -76,11 +84,7 @@ const double* ImplicitOracle::values_at(const std::int32_t* v) {
   const std::size_t slot = front_slot(v);
   std::int32_t* front_key = front_keys_.data() + slot * d_;
   double* front = front_values_.data() + slot * stride_;
-  if (front_used_[slot]) {
-    std::int32_t diff = 0;  // (std::equal would call memcmp for a few ints)
-    for (int i = 0; i < d_; ++i) diff |= v[i] ^ front_key[i];
-    if (diff == 0) return front;
-  }
+  if (front_holds(slot, v)) return front;
   const auto* key = reinterpret_cast<const std::uint32_t*>(v);
   const std::uint64_t h = hash_words(key, d_);
   front_used_[slot] = 0;
@@ -274,6 +278,7 @@ void ImplicitOracle::prefetch_pivot(const std::int32_t* v) {
   const std::size_t slot = front_slot(v);
   __builtin_prefetch(front_keys_.data() + slot * d_);
   __builtin_prefetch(front_values_.data() + slot * stride_);
+  if (front_holds(slot, v)) return;  // met lately, as a rule: no hash, no slot of the big table to fetch
   const std::uint64_t h = hash_words(reinterpret_cast<const std::uint32_t*>(v), d_);
   if (shared_)
     shared_->prefetch(h);

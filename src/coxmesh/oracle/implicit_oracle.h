@@ -75,6 +75,7 @@ class ImplicitOracle final : public IntersectionOracle {
   static constexpr int kFrontBits = 14;
   static constexpr std::size_t kFrontSlots = std::size_t{1} << kFrontBits;  // recent vertices, direct-mapped
   std::size_t front_slot(const std::int32_t* v) const;
+  bool front_holds(std::size_t slot, const std::int32_t* v) const;  // v's values are in its slot
   std::vector<std::int32_t> front_keys_;
   std::vector<double> front_values_;
   std::vector<std::uint8_t> front_used_;

@@ -138,25 +138,54 @@ void Triangulation::cartesian(const std::int32_t* v, double* x) const {
   }
 }
 
-void Triangulation::vertex_coordinates(const Simplex& sigma, double* out) const {
-  cartesian(sigma.y.data(), out);
+namespace {
+
+// Triangulation::vertex_coordinates for d = D (D = 0: d at run time). Loops of constant length for
+// the common d: the ends of loops of varying length cost more than their few additions (SO(3) ⊂ R⁹,
+// once per oracle hit). The same operations in the same order: the same bits.
+template <int D>
+void vertex_coordinates_n(int d_runtime, const double* m, const double* offset, const Simplex& sigma, double* out) {
+  const int d = D ? D : d_runtime;
+  for (int i = 0; i < d; ++i) out[i] = offset[i];  // Λ·y + b, as cartesian()
+  for (int j = 0; j < d; ++j) {
+    const double t = sigma.y[j];
+    const double* col = m + static_cast<std::ptrdiff_t>(j) * d;
+    for (int i = 0; i < d; ++i) out[i] += col[i] * t;
+  }
   // v_j = v_{j-1} + the columns e of block j − 1, added in increasing e. The columns are sorted by
   // block first (stably: the same sums, the same bits); testing each column against each block
   // was a branch per pair, mispredicted as often as not.
   std::array<int, kMaxDimension + 2> end{};  // end[b]: one past block b's columns in `order`
   std::array<int, kMaxDimension> order;
-  for (int e = 0; e < d_; ++e) ++end[sigma.block[e] + 1];
+  for (int e = 0; e < d; ++e) ++end[sigma.block[e] + 1];
   for (int b = 1; b <= sigma.k + 1; ++b) end[b] += end[b - 1];
-  for (int e = 0; e < d_; ++e) order[end[sigma.block[e]]++] = e;
-  const double* m = matrix_.data();
+  for (int e = 0; e < d; ++e) order[end[sigma.block[e]]++] = e;
   for (int j = 1; j <= sigma.k; ++j) {
-    double* p = out + static_cast<std::ptrdiff_t>(j) * d_;
-    const double* prev = p - d_;
-    for (int i = 0; i < d_; ++i) p[i] = prev[i];
+    double* p = out + static_cast<std::ptrdiff_t>(j) * d;
+    const double* prev = p - d;
+    for (int i = 0; i < d; ++i) p[i] = prev[i];
     for (int at = j == 1 ? 0 : end[j - 2]; at < end[j - 1]; ++at) {
-      const double* col = m + static_cast<std::ptrdiff_t>(order[at]) * d_;
-      for (int i = 0; i < d_; ++i) p[i] += col[i];
+      const double* col = m + static_cast<std::ptrdiff_t>(order[at]) * d;
+      for (int i = 0; i < d; ++i) p[i] += col[i];
     }
+  }
+}
+
+}  // namespace
+
+void Triangulation::vertex_coordinates(const Simplex& sigma, double* out) const {
+  const double *m = matrix_.data(), *b = offset_.data();
+  switch (d_) {
+    case 3:
+      return vertex_coordinates_n<3>(d_, m, b, sigma, out);
+    case 4:
+      return vertex_coordinates_n<4>(d_, m, b, sigma, out);
+    case 6:
+      return vertex_coordinates_n<6>(d_, m, b, sigma, out);
+    case 9:
+      return vertex_coordinates_n<9>(d_, m, b, sigma, out);
+    default:
+      return vertex_coordinates_n<0>(d_, m, b, sigma, out);
   }
 }
 

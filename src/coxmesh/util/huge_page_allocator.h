@@ -152,7 +152,11 @@ void append_few(V& v, const typename V::value_type* p, std::size_t n) {
     }
     if (!grown) v.reserve(doubled);
   }
-  for (std::size_t i = 0; i < n; ++i) v.push_back(p[i]);
+  // (resize then copy: one capacity check, not one per push_back; with an uninitialised allocator
+  // resize writes nothing)
+  const std::size_t size = v.size();
+  v.resize(size + n);
+  std::copy_n(p, n, v.data() + size);
 }
 
 /// Resizes v to n elements; when v has to move, it reserves kHeadroom times its capacity. A move
