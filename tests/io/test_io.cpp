@@ -808,6 +808,11 @@ TEST(AtomicFile, ErrorsLeaveThePreviousFileUntouched) {
   EXPECT_THROW(check_writable((dir / "missing" / "out.txt").string()), InputError);
   EXPECT_THROW(check_writable((dir / "sub").string()), InputError);
   EXPECT_THROW(check_writable((target / "x").string()), InputError);
+  // A block bigger than a few slices of writeback (8 MiB) arrives whole, after what came before.
+  std::string big(20 * (1 << 20) + 12345, '\0');
+  for (std::size_t i = 0; i < big.size(); ++i) big[i] = static_cast<char>(i * 2654435761u >> 24);
+  write_file_atomically(target.string(), [&](std::ostream& os) { os << "head" << big << "tail"; });
+  EXPECT_TRUE(read_text(target) == "head" + big + "tail");
   // Success replaces the content.
   write_file_atomically(target.string(), [](std::ostream& os) { os << "new"; });
   EXPECT_EQ(read_text(target), "new");

@@ -13,6 +13,7 @@
 #include "coxmesh/io/mesh_formats.h"
 #include "coxmesh/io/polygons.h"
 #include "coxmesh/io/simplices.h"
+#include "coxmesh/util/huge_page_allocator.h"
 
 namespace coxmesh {
 
@@ -26,7 +27,8 @@ constexpr std::uint8_t kVertex = 1, kLine = 3, kTriangle = 5, kPolygon = 7, kTet
 // faces arrays (Int32 where every number fits: half the bytes to build, copy and store).
 template <class Index>
 struct Grid {
-  std::vector<Index> connectivity, offsets, faces, faceoffsets;
+  // (faces: resized, then written, a cell at a time; big arrays mapped, not zeroed)
+  UninitializedHugeVector<Index> connectivity, offsets, faces, faceoffsets;
   std::vector<std::uint8_t> types, dimension, is_boundary;
   std::vector<std::uint64_t> domains;  // bit i: the cell lies on D_{i+1} = 0 (a boundary cell of one domain: 1)
   bool has_polyhedra = false;
@@ -68,28 +70,34 @@ struct Grid {
   }
 };
 
-std::array<double, 3> vec(const double* p3, std::uint32_t v) { return {p3[3 * v], p3[3 * v + 1], p3[3 * v + 2]}; }
-
 // Adds the closed 3-cell at `cell` as a VTK polyhedron with faces turned outwards (Newell normal
 // against the direction from the cell's centroid to the face's centroid). The face stream is
-// appended in place (its room is reserved by the caller). xyz: scratch space.
+// written in place, one resize per cell (its room is reserved by the caller). xyz: scratch space.
 template <class Index>
 void add_polyhedron(Grid<Index>& g, std::uint64_t domains, const PolyhedronCursor& cell, const Ragged& polygons,
                     const double* p3, std::vector<std::array<double, 3>>& xyz) {
   const auto corners = cell.corners();
+  const auto faces = cell.faces();
+  const auto local_cycles = cell.local_cycles();
   xyz.resize(corners.size());
   std::array<double, 3> centre{0, 0, 0};
   for (std::size_t v = 0; v < corners.size(); ++v) {
-    xyz[v] = vec(p3, corners[v]);
-    for (int i = 0; i < 3; ++i) centre[i] += xyz[v][i] / static_cast<double>(corners.size());
+    const double* p = p3 + 3 * std::size_t{corners[v]};
+    xyz[v] = {p[0], p[1], p[2]};
+    for (int i = 0; i < 3; ++i) centre[i] += p[i] / static_cast<double>(corners.size());
   }
   g.add(kPolyhedron, 3, domains, corners);
   g.has_polyhedra = true;
-  g.faces.push_back(static_cast<Index>(cell.faces().size()));
-  const std::uint32_t* local = cell.local_cycles().data();
-  for (std::uint32_t f : cell.faces()) {
+  const std::size_t at = g.faces.size();
+  g.faces.resize(at + 1 + faces.size() + local_cycles.size());
+  Index* out = g.faces.data() + at;
+  *out++ = static_cast<Index>(faces.size());
+  const std::uint32_t* local = local_cycles.data();
+  for (std::uint32_t f : faces) {
     const auto cycle = polygons[f];
     const std::size_t k = cycle.size();
+    // (the divisions as they are: a projected cell can be flat, and its faces' orientation then
+    // hangs on the last bit, which the file must keep)
     std::array<double, 3> normal{0, 0, 0}, mid{0, 0, 0};
     for (std::size_t i = 0; i < k; ++i) {
       const auto &a = xyz[local[i]], &b = xyz[local[i + 1 < k ? i + 1 : 0]];
@@ -101,12 +109,12 @@ void add_polyhedron(Grid<Index>& g, std::uint64_t domains, const PolyhedronCurso
     local += k;
     double dot = 0;
     for (int j = 0; j < 3; ++j) dot += normal[j] * (mid[j] - centre[j]);
-    g.faces.push_back(static_cast<Index>(k));
+    *out++ = static_cast<Index>(k);
     if (dot < 0) {  // (reversed: c0, c(k−1), …, c1)
-      g.faces.push_back(static_cast<Index>(cycle[0]));
-      for (std::size_t i = k - 1; i >= 1; --i) g.faces.push_back(static_cast<Index>(cycle[i]));
+      *out++ = static_cast<Index>(cycle[0]);
+      for (std::size_t i = k - 1; i >= 1; --i) *out++ = static_cast<Index>(cycle[i]);
     } else {
-      for (std::uint32_t v : cycle) g.faces.push_back(static_cast<Index>(v));
+      for (std::uint32_t v : cycle) *out++ = static_cast<Index>(v);
     }
   }
   g.faceoffsets.back() = static_cast<Index>(g.faces.size());
