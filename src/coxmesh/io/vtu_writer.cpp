@@ -181,13 +181,13 @@ void join_offsets(std::deque<Grid<Index>>& pieces) {
 // A bound on the length of the face stream of 3-cells begin .. end − 1 of one kind.
 std::size_t face_stream_bound(const CellLevel& level, CellKind kind, const Ragged& polygons, std::uint32_t n2,
                               std::uint32_t begin, std::uint32_t end) {
-  const bool listed = kind == CellKind::interior && !level.boundary_facet.empty();
+  const bool closing = kind == CellKind::interior && !level.boundary_facet.empty();  // (a boundary face too)
   const std::uint32_t shift = kind == CellKind::boundary ? n2 : 0;
   std::size_t n = 0;
   for (std::uint32_t c = begin; c < end; ++c) {
     n += 1 + level.facet_offsets[c + 1] - level.facet_offsets[c];
     for (std::uint32_t f : level.facets(c)) n += polygons.offsets[shift + f + 1] - polygons.offsets[shift + f];
-    if (listed && level.boundary_facet[c] != CellLevel::kNone)
+    if (closing && level.boundary_facet[c] != CellLevel::kNone)
       n += 1 + polygons.offsets[n2 + level.boundary_facet[c] + 1] - polygons.offsets[n2 + level.boundary_facet[c]];
   }
   return n;
@@ -304,8 +304,9 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
         const std::uint32_t n = cell_count(cc, kind, 3);
         // (one range with one worker: no piece is joined; otherwise a few per worker, to even them out)
         const std::uint32_t step = workers == 1 ? n : std::max<std::uint32_t>(1 << 12, n / (8 * workers) + 1);
-        for (std::uint32_t begin = 0; begin < n; begin += step)
-          ranges.push_back({kind, begin, std::min(n, begin + step)});
+        for (std::uint64_t begin = 0; begin < n; begin += step)
+          ranges.push_back({kind, static_cast<std::uint32_t>(begin),
+                            static_cast<std::uint32_t>(std::min<std::uint64_t>(n, begin + step))});
       }
       for (std::size_t i = 0; i < ranges.size(); ++i) cells3.emplace_back().ids = ids;
       skipped.assign(ranges.size(), 0);
