@@ -291,6 +291,7 @@ void run(TraceCliOptions o) {
     wo.projection = o.project;
     wo.pole = pole;
     wo.simplices = o.simplices;
+    wo.threads = o.threads;
     wo.native.source = cloud ? "points " + o.points.file : from_text ? "function " + o.function : "preset " + o.preset;
     for (const std::string& text : o.domains) wo.native.source += "; domain " + text;
     if (o.domain_ball) wo.native.source += "; domain-ball " + std::to_string(*o.domain_ball);

@@ -252,6 +252,8 @@ same_files() {  # same_files NAME EXT TRACE-ARGS...: files for 1, 2, 3 and 4 thr
 same_files "torus" cxm --preset torus --edge-length 0.05
 same_files "torus" vtu --preset torus --edge-length 0.05
 same_files "S^3 in R^5, cut" cxm --preset sphere --m 3 --dim 5 --edge-length 0.5 --cut 1,1,0,0,0,0.3 --seed -1,0,0,0,0
+# (24,736 polyhedra: several ranges of 3-cells per worker, put together in order)
+same_files "S^3 in R^5, cut" vtu --preset sphere --m 3 --dim 5 --edge-length 0.5 --cut 1,1,0,0,0,0.3 --seed -1,0,0,0,0
 same_files "flat torus, cut" mesh --preset flat-torus --cut 1,1,0,0,0.5 --seed -1,0,1,0 --edge-length 0.1
 same_files "function, automatic seeds" ply --function "x^4+y^4+z^4-1" --domain "z-0.2" --edge-length 0.05
 

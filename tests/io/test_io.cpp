@@ -808,6 +808,11 @@ TEST(AtomicFile, ErrorsLeaveThePreviousFileUntouched) {
   EXPECT_THROW(check_writable((dir / "missing" / "out.txt").string()), InputError);
   EXPECT_THROW(check_writable((dir / "sub").string()), InputError);
   EXPECT_THROW(check_writable((target / "x").string()), InputError);
+  // A block bigger than a few slices of writeback (8 MiB) arrives whole, after what came before.
+  std::string big(20 * (1 << 20) + 12345, '\0');
+  for (std::size_t i = 0; i < big.size(); ++i) big[i] = static_cast<char>(i * 2654435761u >> 24);
+  write_file_atomically(target.string(), [&](std::ostream& os) { os << "head" << big << "tail"; });
+  EXPECT_TRUE(read_text(target) == "head" + big + "tail");
   // Success replaces the content.
   write_file_atomically(target.string(), [](std::ostream& os) { os << "new"; });
   EXPECT_EQ(read_text(target), "new");
@@ -818,4 +823,35 @@ TEST(AtomicFile, ErrorsLeaveThePreviousFileUntouched) {
   EXPECT_THROW(write_mesh(target.string(), MeshFormat::vtu, cc, bad), InputError);
   EXPECT_EQ(read_text(target), "new");
   fs::remove_all(dir);
+}
+
+TEST(Vtu, SameBytesForAnyNumberOfWorkers) {
+  // 3-cells enough for several ranges per worker (ranges of 4096 cells at least), interior and
+  // boundary ones (a cap of S^4 has boundary 3-cells), as polyhedra and as tetrahedra, with global ids.
+  for (const Case& c : {Case{"S^3 in R^4", sphere(3, 4, 1.0), nullptr, 0.2},
+                        Case{"cap of S^4 in R^5", sphere(4, 5, 1.0), ball_domain({1, 0, 0, 0, 0}, 1.0), 0.45}}) {
+    const CellComplex cc = trace(c);
+    ASSERT_GT(cell_count(cc, CellKind::interior, 3), 3u * 4096) << c.name;
+    const Projection projection = make_projection("", cc.ambient_dimension, {}, {});
+    VtuGlobalIds ids;
+    for (int j = 0; j < static_cast<int>(cc.interior.size()); ++j)
+      ids.interior.push_back(
+          std::span<const std::uint32_t>(cc.interior[j].facet_offsets.data(), cc.interior[j].size()));
+    for (int j = 0; j < static_cast<int>(cc.boundary.size()); ++j)
+      ids.boundary.push_back(
+          std::span<const std::uint32_t>(cc.boundary[j].facet_offsets.data(), cc.boundary[j].size()));
+    for (std::uint32_t v = 0; v < vertex_count(cc); ++v) ids.points.push_back(3 * v + 1);
+    for (bool simplices : {false, true}) {
+      std::ostringstream one, with_ids;
+      write_vtu(one, cc, projection, simplices, 1);
+      write_vtu(with_ids, cc, projection, simplices, ids, 1);
+      for (int workers = 2; workers <= 4; ++workers) {
+        std::ostringstream several, several_ids;
+        write_vtu(several, cc, projection, simplices, workers);
+        write_vtu(several_ids, cc, projection, simplices, ids, workers);
+        EXPECT_TRUE(several.str() == one.str()) << c.name << ", " << workers << " workers, simplices " << simplices;
+        EXPECT_TRUE(several_ids.str() == with_ids.str()) << c.name << ", " << workers << " workers, with ids";
+      }
+    }
+  }
 }

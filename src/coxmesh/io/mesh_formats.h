@@ -28,8 +28,10 @@ struct WrittenCounts {
 /// "on_boundary" (UInt8) and, when the projection changes the points, "coordinates" (R^d, d
 /// components); cell data "dimension" (UInt8) and "is_boundary" (UInt8). With `simplices`, polygons
 /// are written as their fan triangles (VTK_TRIANGLE) and polyhedra as tetrahedra (VTK_TETRA), split
-/// as in simplices.h.
-WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices = false);
+/// as in simplices.h. The 3-cells are put together on `threads` workers (0: all hardware threads);
+/// the bytes are the same for any number.
+WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices = false,
+                        int threads = 1);
 
 /// The ids that the cells and vertices of a piece have in the whole complex (a piece of a .pvtu,
 /// written by one of several processes): per cell of each level, interior[j] and boundary[j] (its id
@@ -42,7 +44,7 @@ struct VtuGlobalIds {
 /// write_vtu with point data and cell data "global_id" (UInt64): ids.points, and the id of the cell
 /// each VTK cell comes from (a triangle or tetrahedron of --simplices: its cell's).
 WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices,
-                        const VtuGlobalIds& ids);
+                        const VtuGlobalIds& ids, int threads = 1);
 
 /// OFF: "OFF" with 3D (projected) points, or, with `n_dimensional`, "nOFF" with the R^d points;
 /// faces: every 2-cell (the polygonal 2-skeleton), consistently oriented when m = 2. Needs m ≥ 2

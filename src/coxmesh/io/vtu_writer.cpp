@@ -5,6 +5,7 @@
 #include <climits>
 #include <cstddef>
 #include <cstdint>
+#include <deque>
 #include <span>
 #include <string>
 #include <vector>
@@ -13,6 +14,8 @@
 #include "coxmesh/io/mesh_formats.h"
 #include "coxmesh/io/polygons.h"
 #include "coxmesh/io/simplices.h"
+#include "coxmesh/util/huge_page_allocator.h"
+#include "coxmesh/util/parallel_for.h"
 
 namespace coxmesh {
 
@@ -26,7 +29,8 @@ constexpr std::uint8_t kVertex = 1, kLine = 3, kTriangle = 5, kPolygon = 7, kTet
 // faces arrays (Int32 where every number fits: half the bytes to build, copy and store).
 template <class Index>
 struct Grid {
-  std::vector<Index> connectivity, offsets, faces, faceoffsets;
+  // (faces: resized, then written, a cell at a time; big arrays mapped, not zeroed)
+  UninitializedHugeVector<Index> connectivity, offsets, faces, faceoffsets;
   std::vector<std::uint8_t> types, dimension, is_boundary;
   std::vector<std::uint64_t> domains;  // bit i: the cell lies on D_{i+1} = 0 (a boundary cell of one domain: 1)
   bool has_polyhedra = false;
@@ -68,74 +72,125 @@ struct Grid {
   }
 };
 
-std::array<double, 3> vec(const double* p3, std::uint32_t v) { return {p3[3 * v], p3[3 * v + 1], p3[3 * v + 2]}; }
+// Two doubles in one SSE2 register (a GCC/Clang vector): one division instruction for both.
+using Pair = double __attribute__((vector_size(16)));
 
 // Adds the closed 3-cell at `cell` as a VTK polyhedron with faces turned outwards (Newell normal
 // against the direction from the cell's centroid to the face's centroid). The face stream is
-// appended in place (its room is reserved by the caller). xyz: scratch space.
+// written in place, one resize per cell (its room is reserved by the caller). xyz: scratch space.
 template <class Index>
 void add_polyhedron(Grid<Index>& g, std::uint64_t domains, const PolyhedronCursor& cell, const Ragged& polygons,
                     const double* p3, std::vector<std::array<double, 3>>& xyz) {
   const auto corners = cell.corners();
+  const auto faces = cell.faces();
+  const auto local_cycles = cell.local_cycles();
   xyz.resize(corners.size());
-  std::array<double, 3> centre{0, 0, 0};
+  // The centroids as sums of quotients, x and y in one packed division (the quotients are the
+  // same, bit for bit, as one at a time).
+  const double n = static_cast<double>(corners.size());
+  Pair centre_xy{0, 0};
+  double centre_z = 0;
   for (std::size_t v = 0; v < corners.size(); ++v) {
-    xyz[v] = vec(p3, corners[v]);
-    for (int i = 0; i < 3; ++i) centre[i] += xyz[v][i] / static_cast<double>(corners.size());
+    const double* p = p3 + 3 * std::size_t{corners[v]};
+    xyz[v] = {p[0], p[1], p[2]};
+    centre_xy += Pair{p[0], p[1]} / Pair{n, n};
+    centre_z += p[2] / n;
   }
   g.add(kPolyhedron, 3, domains, corners);
   g.has_polyhedra = true;
-  g.faces.push_back(static_cast<Index>(cell.faces().size()));
-  const std::uint32_t* local = cell.local_cycles().data();
-  for (std::uint32_t f : cell.faces()) {
+  const std::size_t at = g.faces.size();
+  g.faces.resize(at + 1 + faces.size() + local_cycles.size());
+  Index* out = g.faces.data() + at;
+  *out++ = static_cast<Index>(faces.size());
+  const std::uint32_t* local = local_cycles.data();
+  for (std::uint32_t f : faces) {
     const auto cycle = polygons[f];
     const std::size_t k = cycle.size();
-    std::array<double, 3> normal{0, 0, 0}, mid{0, 0, 0};
+    // (the divisions as they are: a projected cell can be flat, and its faces' orientation then
+    // hangs on the last bit, which the file must keep)
+    std::array<double, 3> normal{0, 0, 0};
+    const double kd = static_cast<double>(k);
+    Pair mid_xy{0, 0};
+    double mid_z = 0;
     for (std::size_t i = 0; i < k; ++i) {
       const auto &a = xyz[local[i]], &b = xyz[local[i + 1 < k ? i + 1 : 0]];
       normal[0] += (a[1] - b[1]) * (a[2] + b[2]);
       normal[1] += (a[2] - b[2]) * (a[0] + b[0]);
       normal[2] += (a[0] - b[0]) * (a[1] + b[1]);
-      for (int j = 0; j < 3; ++j) mid[j] += a[j] / static_cast<double>(k);
+      mid_xy += Pair{a[0], a[1]} / Pair{kd, kd};
+      mid_z += a[2] / kd;
     }
     local += k;
-    double dot = 0;
-    for (int j = 0; j < 3; ++j) dot += normal[j] * (mid[j] - centre[j]);
-    g.faces.push_back(static_cast<Index>(k));
+    double dot = 0;  // (summed in the order x, y, z)
+    dot += normal[0] * (mid_xy[0] - centre_xy[0]);
+    dot += normal[1] * (mid_xy[1] - centre_xy[1]);
+    dot += normal[2] * (mid_z - centre_z);
+    *out++ = static_cast<Index>(k);
     if (dot < 0) {  // (reversed: c0, c(k−1), …, c1)
-      g.faces.push_back(static_cast<Index>(cycle[0]));
-      for (std::size_t i = k - 1; i >= 1; --i) g.faces.push_back(static_cast<Index>(cycle[i]));
+      *out++ = static_cast<Index>(cycle[0]);
+      for (std::size_t i = k - 1; i >= 1; --i) *out++ = static_cast<Index>(cycle[i]);
     } else {
-      for (std::uint32_t v : cycle) g.faces.push_back(static_cast<Index>(v));
+      for (std::uint32_t v : cycle) *out++ = static_cast<Index>(v);
     }
   }
   g.faceoffsets.back() = static_cast<Index>(g.faces.size());
 }
 
-// A bound on the length of the face stream of the 3-cells of one kind (all of them closed).
-std::size_t face_stream_bound(const CellComplex& cc, CellKind kind, const Ragged& polygons) {
-  const CellLevel* level = cell_level(cc, kind, 3);
-  if (!level) return 0;
-  std::size_t n = level->size() + level->facet_ids.size() + level->boundary_facet.size();
-  const std::uint32_t n2 = cell_count(cc, CellKind::interior, 2), shift = kind == CellKind::boundary ? n2 : 0;
-  for (std::uint32_t f : level->facet_ids) n += polygons.offsets[shift + f + 1] - polygons.offsets[shift + f];
-  for (std::uint32_t f : level->boundary_facet)
-    if (f != CellLevel::kNone) n += polygons.offsets[n2 + f + 1] - polygons.offsets[n2 + f];
-  return n;
-}
-
-// One appended-data block: UInt64 byte count, then the bytes, those of one array or of two one
+// One appended-data block: UInt64 byte count, then the bytes, those of one array or of several one
 // after the other (written from where they are: no copy joins them).
 struct Block {
   std::string xml;  // the DataArray element, without its offset attribute
-  std::array<std::span<const std::byte>, 2> parts;
-  std::uint64_t bytes() const { return parts[0].size() + parts[1].size(); }
+  std::vector<std::span<const std::byte>> parts;
+  std::uint64_t bytes() const {
+    std::uint64_t n = 0;
+    for (const auto& part : parts) n += part.size();
+    return n;
+  }
 };
 
 template <class V>
 Block block(std::string xml, const V& v, const V& then = {}) {
   return {std::move(xml),
           {std::as_bytes(std::span(v.data(), v.size())), std::as_bytes(std::span(then.data(), then.size()))}};
+}
+
+// The block of one array of the grid, made of the pieces' arrays in order.
+template <class Index, class V>
+Block block(std::string xml, const std::deque<Grid<Index>>& pieces, V Grid<Index>::*array) {
+  Block b{std::move(xml), {}};
+  for (const Grid<Index>& piece : pieces)
+    b.parts.push_back(std::as_bytes(std::span((piece.*array).data(), (piece.*array).size())));
+  return b;
+}
+
+// Where a piece's connectivity and face stream start in the whole arrays, added to its offsets
+// (the faceoffsets of cells without faces stay −1).
+template <class Index>
+void join_offsets(std::deque<Grid<Index>>& pieces) {
+  std::size_t corners = 0, faces = 0;
+  for (Grid<Index>& piece : pieces) {
+    if (corners > 0)
+      for (Index& o : piece.offsets) o += static_cast<Index>(corners);
+    if (faces > 0)
+      for (Index& o : piece.faceoffsets)
+        if (o != -1) o += static_cast<Index>(faces);
+    corners += piece.connectivity.size(), faces += piece.faces.size();
+  }
+}
+
+// A bound on the length of the face stream of 3-cells begin .. end − 1 of one kind.
+std::size_t face_stream_bound(const CellLevel& level, CellKind kind, const Ragged& polygons, std::uint32_t n2,
+                              std::uint32_t begin, std::uint32_t end) {
+  const bool closing = kind == CellKind::interior && !level.boundary_facet.empty();  // (a boundary face too)
+  const std::uint32_t shift = kind == CellKind::boundary ? n2 : 0;
+  std::size_t n = 0;
+  for (std::uint32_t c = begin; c < end; ++c) {
+    n += 1 + level.facet_offsets[c + 1] - level.facet_offsets[c];
+    for (std::uint32_t f : level.facets(c)) n += polygons.offsets[shift + f + 1] - polygons.offsets[shift + f];
+    if (closing && level.boundary_facet[c] != CellLevel::kNone)
+      n += 1 + polygons.offsets[n2 + level.boundary_facet[c] + 1] - polygons.offsets[n2 + level.boundary_facet[c]];
+  }
+  return n;
 }
 
 // Whether every number of the connectivity, offsets and faces arrays fits in Int32: a bound from
@@ -153,7 +208,7 @@ bool fits_int32(const CellComplex& cc, int p) {
 
 template <class Index>
 WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices,
-                           const VtuGlobalIds* ids) {
+                           const VtuGlobalIds* ids, int threads) {
   const std::string index_type = sizeof(Index) == 4 ? "Int32" : "Int64";
   const int d = cc.ambient_dimension, m = cc.manifold_dimension;
   const ProjectedVertices projected(projection, cc);
@@ -162,10 +217,12 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
   WrittenCounts counts;
   counts.points = nv;
 
-  Grid<Index> g;
+  // The grid in pieces, written one after the other: the 3-cells' in order, then the rest's (g).
+  std::deque<Grid<Index>> pieces(1);
+  Grid<Index>& g = pieces.back();
   g.ids = ids;
   const int p = std::min(m, 3);
-  g.reserve(cc, p, simplices);
+  g.reserve(cc, p == 3 ? 2 : p, simplices);  // (3-cells: in pieces of their own)
   std::vector<std::array<double, 3>> scratch_xyz;
   auto add_level = [&](CellKind kind, int dim) {
     const bool boundary = kind == CellKind::boundary;
@@ -234,29 +291,70 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
       add_level(CellKind::boundary, 1);
       add_strata(&polygons);
     } else {
+      // The 3-cells in ranges, each into its own piece of the grid, on several workers at once.
+      const int workers = resolve_threads(threads);
+      std::deque<Grid<Index>> cells3;
+      std::vector<std::uint64_t> skipped;
+      struct Range {
+        CellKind kind;
+        std::uint32_t begin, end;
+      };
+      std::vector<Range> ranges;
       for (CellKind kind : {CellKind::interior, CellKind::boundary}) {
+        const std::uint32_t n = cell_count(cc, kind, 3);
+        // (one range with one worker: no piece is joined; otherwise a few per worker, to even them out)
+        const std::uint32_t step = workers == 1 ? n : std::max<std::uint32_t>(1 << 12, n / (8 * workers) + 1);
+        for (std::uint64_t begin = 0; begin < n; begin += step)
+          ranges.push_back({kind, static_cast<std::uint32_t>(begin),
+                            static_cast<std::uint32_t>(std::min<std::uint64_t>(n, begin + step))});
+      }
+      for (std::size_t i = 0; i < ranges.size(); ++i) cells3.emplace_back().ids = ids;
+      skipped.assign(ranges.size(), 0);
+      std::vector<PolyhedronCursor> cursors;
+      std::vector<std::vector<std::array<double, 3>>> scratch(workers);
+      const auto add_range = [&](std::size_t r, int worker) {
+        const auto [kind, begin, end] = ranges[r];
+        Grid<Index>& piece = cells3[r];
         const std::uint64_t on_boundary = kind == CellKind::boundary ? 1 : 0;
+        const CellLevel& level = *cell_level(cc, kind, 3);
+        const std::size_t cells = end - begin;
+        piece.offsets.reserve(cells), piece.types.reserve(cells), piece.dimension.reserve(cells);
+        piece.is_boundary.reserve(cells), piece.domains.reserve(cells), piece.faceoffsets.reserve(cells);
+        if (ids) piece.global.reserve(cells);
         if (!simplices) {  // (a corner of a closed polyhedron is in 3 faces or more: ≤ stream / 3 corners)
-          const std::size_t stream = face_stream_bound(cc, kind, polygons);
-          g.faces.reserve(g.faces.size() + stream);
-          g.connectivity.reserve(g.connectivity.capacity() + stream / 3);
+          const std::size_t stream = face_stream_bound(level, kind, polygons, n2, begin, end);
+          piece.faces.reserve(stream);
+          piece.connectivity.reserve(stream / 3);
         }
-        PolyhedronCursor cell(cc, kind, polygons, p3.data());
-        for (std::uint32_t c = 0; c < cell.size(); ++c) {
-          g.from(kind, 3, c);
+        PolyhedronCursor& cell = cursors[kind == CellKind::interior ? 2 * worker : 2 * worker + 1];
+        for (std::uint32_t c = begin; c < end; ++c) {
+          piece.from(kind, 3, c);
           if (!cell.load(c)) {
-            ++counts.skipped;
+            ++skipped[r];
           } else if (simplices) {
             for_each_cone_tetrahedron(cell.faces(), polygons, p3.data(),
                                       [&](std::uint32_t a, std::uint32_t b, std::uint32_t c2, std::uint32_t e) {
                                         const std::array<std::uint32_t, 4> t{a, b, c2, e};
-                                        g.add(kTetrahedron, 3, on_boundary ? 1 : domains_of(3, c), t);
+                                        piece.add(kTetrahedron, 3, on_boundary ? 1 : domains_of(3, c), t);
                                       });
           } else {
-            add_polyhedron(g, on_boundary ? 1 : domains_of(3, c), cell, polygons, p3.data(), scratch_xyz);
+            add_polyhedron(piece, on_boundary ? 1 : domains_of(3, c), cell, polygons, p3.data(), scratch[worker]);
           }
         }
+      };
+      cursors.reserve(2 * static_cast<std::size_t>(workers));
+      for (int w = 0; w < workers; ++w)
+        for (CellKind kind : {CellKind::interior, CellKind::boundary})
+          cursors.emplace_back(cc, kind, polygons, p3.data());
+      if (workers == 1 || ranges.size() <= 1) {
+        for (std::size_t r = 0; r < ranges.size(); ++r) add_range(r, 0);
+      } else {
+        WorkerPool pool(workers);
+        pool.run(ranges.size(), add_range);
       }
+      for (std::uint64_t n : skipped) counts.skipped += n;
+      // (g, still empty, goes last)
+      for (auto piece = cells3.rbegin(); piece != cells3.rend(); ++piece) pieces.push_front(std::move(*piece));
       for (std::uint32_t c = n2; m == 3 && c < polygons.size(); ++c) {
         if (!polygons[c].empty()) {
           g.from(CellKind::boundary, 2, c - n2);
@@ -268,7 +366,9 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
       add_strata(&polygons);
     }
   }
-  counts.cells = g.types.size();
+  join_offsets(pieces);
+  bool has_polyhedra = false;
+  for (const Grid<Index>& piece : pieces) counts.cells += piece.types.size(), has_polyhedra |= piece.has_polyhedra;
 
   std::vector<std::uint8_t> on_boundary(nv, 0);
   std::fill(on_boundary.begin() + n0, on_boundary.end(), 1);
@@ -279,23 +379,29 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
     point_data.push_back(block(R"(<DataArray type="Float64" Name="coordinates" NumberOfComponents=")" +
                                    std::to_string(d) + R"(" format="appended")",
                                cc.vertices, cc.boundary_vertices));
-  cell_data.push_back(block(R"(<DataArray type="UInt8" Name="dimension" format="appended")", g.dimension));
-  cell_data.push_back(block(R"(<DataArray type="UInt8" Name="is_boundary" format="appended")", g.is_boundary));
-  cell_data.push_back(block(R"(<DataArray type="UInt64" Name="domains" format="appended")", g.domains));
+  cell_data.push_back(
+      block(R"(<DataArray type="UInt8" Name="dimension" format="appended")", pieces, &Grid<Index>::dimension));
+  cell_data.push_back(
+      block(R"(<DataArray type="UInt8" Name="is_boundary" format="appended")", pieces, &Grid<Index>::is_boundary));
+  cell_data.push_back(
+      block(R"(<DataArray type="UInt64" Name="domains" format="appended")", pieces, &Grid<Index>::domains));
   if (ids) {
     if (ids->points.size() != nv) throw InputError("write_vtu: a global id is needed for every point");
     point_data.push_back(block(R"(<DataArray type="UInt64" Name="global_id" format="appended")", ids->points));
-    cell_data.push_back(block(R"(<DataArray type="UInt64" Name="global_id" format="appended")", g.global));
+    cell_data.push_back(
+        block(R"(<DataArray type="UInt64" Name="global_id" format="appended")", pieces, &Grid<Index>::global));
   }
   points.push_back(block(R"(<DataArray type="Float64" Name="Points" NumberOfComponents="3" format="appended")", p3));
-  cells.push_back(
-      block(R"(<DataArray type=")" + index_type + R"(" Name="connectivity" format="appended")", g.connectivity));
-  cells.push_back(block(R"(<DataArray type=")" + index_type + R"(" Name="offsets" format="appended")", g.offsets));
-  cells.push_back(block(R"(<DataArray type="UInt8" Name="types" format="appended")", g.types));
-  if (g.has_polyhedra) {
-    cells.push_back(block(R"(<DataArray type=")" + index_type + R"(" Name="faces" format="appended")", g.faces));
-    cells.push_back(
-        block(R"(<DataArray type=")" + index_type + R"(" Name="faceoffsets" format="appended")", g.faceoffsets));
+  cells.push_back(block(R"(<DataArray type=")" + index_type + R"(" Name="connectivity" format="appended")", pieces,
+                        &Grid<Index>::connectivity));
+  cells.push_back(block(R"(<DataArray type=")" + index_type + R"(" Name="offsets" format="appended")", pieces,
+                        &Grid<Index>::offsets));
+  cells.push_back(block(R"(<DataArray type="UInt8" Name="types" format="appended")", pieces, &Grid<Index>::types));
+  if (has_polyhedra) {
+    cells.push_back(block(R"(<DataArray type=")" + index_type + R"(" Name="faces" format="appended")", pieces,
+                          &Grid<Index>::faces));
+    cells.push_back(block(R"(<DataArray type=")" + index_type + R"(" Name="faceoffsets" format="appended")", pieces,
+                          &Grid<Index>::faceoffsets));
   }
 
   std::string xml =
@@ -335,17 +441,18 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
 
 }  // namespace
 
-WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices) {
+WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices,
+                        int threads) {
   return fits_int32(cc, std::min(cc.manifold_dimension, 3))
-             ? write_vtu_as<std::int32_t>(os, cc, projection, simplices, nullptr)
-             : write_vtu_as<std::int64_t>(os, cc, projection, simplices, nullptr);
+             ? write_vtu_as<std::int32_t>(os, cc, projection, simplices, nullptr, threads)
+             : write_vtu_as<std::int64_t>(os, cc, projection, simplices, nullptr, threads);
 }
 
 WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices,
-                        const VtuGlobalIds& ids) {
+                        const VtuGlobalIds& ids, int threads) {
   return fits_int32(cc, std::min(cc.manifold_dimension, 3))
-             ? write_vtu_as<std::int32_t>(os, cc, projection, simplices, &ids)
-             : write_vtu_as<std::int64_t>(os, cc, projection, simplices, &ids);
+             ? write_vtu_as<std::int32_t>(os, cc, projection, simplices, &ids, threads)
+             : write_vtu_as<std::int64_t>(os, cc, projection, simplices, &ids, threads);
 }
 
 }  // namespace coxmesh

@@ -32,6 +32,9 @@ struct WriteOptions {
   /// --simplices: polygons and polyhedra as triangles and tetrahedra (simplices.h) in VTU, OFF,
   /// PLY and OBJ; medit, STL and Gmsh are simplicial anyway, and .cxm stores the cells (refused).
   bool simplices = false;
+  /// --threads: workers that put a VTU file's 3-cells together (0: all hardware threads); the
+  /// file is the same for any number.
+  int threads = 1;
 };
 
 /// Whether `format` can hold an m-manifold in R^d with these options (the checks write_mesh makes
