@@ -749,6 +749,10 @@ TopologyReport analyze_topology_distributed(CellComplexPart&& part, Communicator
   // takes, left rank 0 1.5 times as many cells of T³ at P = 2.
   std::vector<std::uint8_t> gone(reduced, 0);
   std::uint64_t removed_vertices = 0;  // (|V|)
+  // The last range (the end of the walk, where its fronts close up) is reduced from its end: roots
+  // and passes in decreasing id order. On T³ at P = 2 its passes visit 5.4 M cells instead of 8.4 M
+  // and leave rank 0 12 % fewer cells; the middle ranges of P = 3, 4 do better forwards.
+  const bool from_the_end = comm.size() > 1 && comm.rank() == comm.size() - 1;
   {
     const std::uint32_t vertices = static_cast<std::uint32_t>(level_begin(2));
     const std::uint32_t first_edge = vertices, end_edge = static_cast<std::uint32_t>(level_begin(4));
@@ -763,7 +767,8 @@ TopologyReport analyze_topology_distributed(CellComplexPart&& part, Communicator
       if (const std::span<const std::uint32_t> ends = ranges.of(e); own(ends))
         edges[edge_start[ends[0] + 1]++] = e, edges[edge_start[ends[1] + 1]++] = e;
     std::vector<std::uint32_t> reached;
-    for (std::uint32_t root = 0; root < vertices; ++root) {
+    for (std::uint32_t r = 0; r < vertices; ++r) {
+      const std::uint32_t root = from_the_end ? vertices - 1 - r : r;
       if (gone[root]) continue;
       gone[root] = 1, ++removed_vertices, reached.assign(1, root);
       for (std::size_t head = 0; head < reached.size(); ++head) {
@@ -786,6 +791,7 @@ TopologyReport analyze_topology_distributed(CellComplexPart&& part, Communicator
     for (int l = first_swept; l < reduced_levels; ++l)
       sizes.push_back(static_cast<std::uint32_t>(layout.local_start[l + 1] - layout.local_start[l]));
     sweep_until_settled(sizes, [&](std::size_t k, std::uint32_t a) {
+      if (from_the_end) a = sizes[k] - 1 - a;
       const int l = first_swept + static_cast<int>(k);
       const std::uint32_t i = static_cast<std::uint32_t>(layout.local_start[l] + a);
       if (gone[i]) return false;
