@@ -98,22 +98,27 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
     out.keys.clear(), out.hashes.clear();
     const std::uint32_t a = static_cast<std::uint32_t>(batch * batch_cells + t * kChunk);
     const std::uint32_t b = std::min(prev.size(), a + kChunk);
-    for (std::uint32_t c = a; c < b; ++c) {  // (straight from the packed keys, into arrays grown once per cell)
-      const PackedCofacets cofacets(prev.simplices.key(c), d);
-      const std::size_t first = out.hashes.size(), count = cofacets.count();
-      out.keys.resize((first + count) * words), out.hashes.resize(first + count);
-      counts[c] = static_cast<std::uint32_t>(count);
-      std::uint32_t* keys = out.keys.data() + first * words;
-      std::uint64_t* hashes = out.hashes.data() + first;
-      cofacets.for_each([&](const std::uint32_t* nu, std::uint64_t hash) {
-        // (four words at a time: a loop of single words was an eighth of the enumeration's samples)
-        int i = 0;
-        for (; i + 4 <= words; i += 4) std::memcpy(keys + i, nu + i, 4 * sizeof(std::uint32_t));
-        for (; i < words; ++i) keys[i] = nu[i];
-        keys += words;
-        *hashes++ = hash;
-      });
-    }
+    // (d fixed at compile time for small d, once per chunk: the loops over d and the words unroll)
+    with_small_dimension(d, [&](auto fixed_d) {
+      constexpr int kD = decltype(fixed_d)::value;
+      const int key_words = kD != 0 ? packed_words(kD) : words;
+      for (std::uint32_t c = a; c < b; ++c) {  // (straight from the packed keys, into arrays grown once per cell)
+        const PackedCofacets<kD> cofacets(prev.simplices.key(c), d);
+        const std::size_t first = out.hashes.size(), count = cofacets.count();
+        out.keys.resize((first + count) * key_words), out.hashes.resize(first + count);
+        counts[c] = static_cast<std::uint32_t>(count);
+        std::uint32_t* keys = out.keys.data() + first * key_words;
+        std::uint64_t* hashes = out.hashes.data() + first;
+        cofacets.for_each([&](const std::uint32_t* nu, std::uint64_t hash) {
+          // (four words at a time: a loop of single words was an eighth of the enumeration's samples)
+          int i = 0;
+          for (; i + 4 <= key_words; i += 4) std::memcpy(keys + i, nu + i, 4 * sizeof(std::uint32_t));
+          for (; i < key_words; ++i) keys[i] = nu[i];
+          keys += key_words;
+          *hashes++ = hash;
+        });
+      }
+    });
     out.ids.resize(out.hashes.size());
   };
   std::vector<KeyRun> runs;

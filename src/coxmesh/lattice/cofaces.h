@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 
 #include "coxmesh/lattice/simplex.h"
 
@@ -111,11 +112,15 @@ inline void CofaceEnumerator::gray_step() {
 /// changes per cofacet, with no Simplex to copy or pack, and the hash follows those words in O(1)
 /// (hash_sum_update). For the cell complex, whose levels are cofacets of the level below (thesis
 /// §4.2). The blocks are read once, in one pass over the labels, for count() and for_each() both.
+/// kD ≠ 0 fixes d = kD at compile time (with_small_dimension), so that the loops over d and the
+/// key's words unroll; kD = 0 reads d at run time.
+template <int kD = 0>
 class PackedCofacets {
  public:
-  PackedCofacets(const std::uint32_t* key, int d) : key_(key), d_(d), k_(label(d)) {
+  PackedCofacets(const std::uint32_t* key, int d) : key_(key), d_(kD != 0 ? kD : d), k_(label(dimension())) {
     // Every block 0..k has an element: zeroed by a pass over them (a loop over the blocks would
     // compile to a `rep stos`, slow to start for a few words).
+    d = dimension();
     for (int i = 0; i <= d; ++i) members_[label(i)] = 0;
     for (int i = 0; i <= d; ++i) members_[label(i)] |= std::uint32_t{1} << i;
   }
@@ -129,7 +134,8 @@ class PackedCofacets {
   void for_each(Emit&& emit) const;
 
  private:
-  int label(int i) const { return static_cast<int>((key_[d_ + (i >> 2)] >> 8 * (i & 3)) & 0xFFu); }
+  int dimension() const { return kD != 0 ? kD : d_; }
+  int label(int i) const { return static_cast<int>((key_[dimension() + (i >> 2)] >> 8 * (i & 3)) & 0xFFu); }
   // (std::popcount is a library call on baseline x86-64)
   static int bit_count(std::uint32_t x) {
     x -= (x >> 1) & 0x55555555u;
@@ -142,10 +148,11 @@ class PackedCofacets {
   std::uint32_t members_[kMaxDimension + 1];  // per block, its elements as a bit set
 };
 
+template <int kD>
 template <class Emit>
-void PackedCofacets::for_each(Emit&& emit) const {
+void PackedCofacets<kD>::for_each(Emit&& emit) const {
   const std::uint32_t* const key = key_;
-  const int d = d_, k = k_, label_words = (d + 1 + 3) / 4;
+  const int d = dimension(), k = k_, label_words = (d + 1 + 3) / 4;
   const std::uint32_t* labels = key + d;
   std::uint32_t cur[packed_words(kMaxDimension)];
   for (int i = 0; i < d + label_words; ++i) cur[i] = key[i];
@@ -183,6 +190,22 @@ void PackedCofacets::for_each(Emit&& emit) const {
       if (rotated)  // (y back for the blocks after)
         for (int j = 0; j + 1 < n; ++j) set(moving[j], key[moving[j]]);
     }
+  }
+}
+
+/// f(std::integral_constant<int, D>{}) with D = d for the common small dimensions (curves, surfaces,
+/// 3-manifolds in R^4) and D = 0 otherwise: dispatched once per level, for PackedCofacets<D>.
+template <class F>
+decltype(auto) with_small_dimension(int d, F&& f) {
+  switch (d) {
+    case 2:
+      return f(std::integral_constant<int, 2>{});
+    case 3:
+      return f(std::integral_constant<int, 3>{});
+    case 4:
+      return f(std::integral_constant<int, 4>{});
+    default:
+      return f(std::integral_constant<int, 0>{});
   }
 }
 
