@@ -194,7 +194,7 @@ void PackedCofacets<kD>::for_each(Emit&& emit) const {
 }
 
 /// f(std::integral_constant<int, D>{}) with D = d for the common small dimensions (curves, surfaces,
-/// 3-manifolds in R^4) and D = 0 otherwise: dispatched once per level, for PackedCofacets<D>.
+/// 3-manifolds in R^4) and D = 0 otherwise: dispatched once per chunk of cells, for PackedCofacets<D>.
 template <class F>
 decltype(auto) with_small_dimension(int d, F&& f) {
   switch (d) {
