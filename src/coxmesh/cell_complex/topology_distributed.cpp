@@ -177,8 +177,9 @@ Ranges redistribute(CellComplexPart& part, const Layout& layout, Communicator& c
       for (std::size_t i = 0; i < n; ++i) out.offsets[base + 1 + i] += out.offsets[base + i];
       out.facets.resize(out.facets.size() + total);
       for (std::size_t at = 0; at < size; at += 2 + word(at + 1))
-        std::memcpy(out.facets.data() + out.offsets[base + (word(at) - layout.lo(l))],
-                    in.data() + (at + 2) * sizeof(std::uint32_t), word(at + 1) * sizeof(std::uint32_t));
+        if (word(at + 1) != 0)  // (vertices have no facets, and memcpy takes no null pointer)
+          std::memcpy(out.facets.data() + out.offsets[base + (word(at) - layout.lo(l))],
+                      in.data() + (at + 2) * sizeof(std::uint32_t), word(at + 1) * sizeof(std::uint32_t));
     });
   }
   part = CellComplexPart{};
