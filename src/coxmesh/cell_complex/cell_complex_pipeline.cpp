@@ -8,6 +8,7 @@
 #include "coxmesh/cell_complex/next_level.h"
 #include "coxmesh/errors.h"
 #include "coxmesh/lattice/cofaces.h"
+#include "coxmesh/util/fixed_dimension.h"
 #include "coxmesh/util/huge_page_allocator.h"
 
 namespace coxmesh::cells {
@@ -99,7 +100,7 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
     const std::uint32_t a = static_cast<std::uint32_t>(batch * batch_cells + t * kChunk);
     const std::uint32_t b = std::min(prev.size(), a + kChunk);
     // (d fixed at compile time for small d, once per chunk: the loops over d and the words unroll)
-    with_small_dimension(d, [&](auto fixed_d) {
+    with_fixed_dimension<2, 3, 4>(d, [&](auto fixed_d) {
       constexpr int kD = decltype(fixed_d)::value;
       const int key_words = kD != 0 ? packed_words(kD) : words;
       for (std::uint32_t c = a; c < b; ++c) {  // (straight from the packed keys, into arrays grown once per cell)

@@ -7,8 +7,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
-#include <type_traits>
-
 #include "coxmesh/lattice/simplex.h"
 
 namespace coxmesh {
@@ -112,7 +110,7 @@ inline void CofaceEnumerator::gray_step() {
 /// changes per cofacet, with no Simplex to copy or pack, and the hash follows those words in O(1)
 /// (hash_sum_update). For the cell complex, whose levels are cofacets of the level below (thesis
 /// §4.2). The blocks are read once, in one pass over the labels, for count() and for_each() both.
-/// kD ≠ 0 fixes d = kD at compile time (with_small_dimension), so that the loops over d and the
+/// kD ≠ 0 fixes d = kD at compile time (with_fixed_dimension, util/fixed_dimension.h), so that the loops over d and the
 /// key's words unroll; kD = 0 reads d at run time.
 template <int kD = 0>
 class PackedCofacets {
@@ -190,22 +188,6 @@ void PackedCofacets<kD>::for_each(Emit&& emit) const {
       if (rotated)  // (y back for the blocks after)
         for (int j = 0; j + 1 < n; ++j) set(moving[j], key[moving[j]]);
     }
-  }
-}
-
-/// f(std::integral_constant<int, D>{}) with D = d for the common small dimensions (curves, surfaces,
-/// 3-manifolds in R^4) and D = 0 otherwise: dispatched once per chunk of cells, for PackedCofacets<D>.
-template <class F>
-decltype(auto) with_small_dimension(int d, F&& f) {
-  switch (d) {
-    case 2:
-      return f(std::integral_constant<int, 2>{});
-    case 3:
-      return f(std::integral_constant<int, 3>{});
-    case 4:
-      return f(std::integral_constant<int, 4>{});
-    default:
-      return f(std::integral_constant<int, 0>{});
   }
 }
 

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "coxmesh/triangulation/locate_kernel.h"
+#include "coxmesh/util/fixed_dimension.h"
 
 namespace coxmesh {
 
@@ -175,18 +176,8 @@ void vertex_coordinates_n(int d_runtime, const double* m, const double* offset, 
 
 void Triangulation::vertex_coordinates(const Simplex& sigma, double* out) const {
   const double *m = matrix_.data(), *b = offset_.data();
-  switch (d_) {
-    case 3:
-      return vertex_coordinates_n<3>(d_, m, b, sigma, out);
-    case 4:
-      return vertex_coordinates_n<4>(d_, m, b, sigma, out);
-    case 6:
-      return vertex_coordinates_n<6>(d_, m, b, sigma, out);
-    case 9:
-      return vertex_coordinates_n<9>(d_, m, b, sigma, out);
-    default:
-      return vertex_coordinates_n<0>(d_, m, b, sigma, out);
-  }
+  with_fixed_dimension<3, 4, 6, 9>(
+      d_, [&](auto fixed_d) { vertex_coordinates_n<decltype(fixed_d)::value>(d_, m, b, sigma, out); });
 }
 
 Simplex Triangulation::locate(std::span<const double> x) const {
