@@ -256,9 +256,8 @@ int run_distributed_guarded(Communicator& comm, const std::function<void()>& bod
 void print_distributed_stats(std::ostream& out, const DistributedTraceStats& s, std::size_t traced,
                              const DistributedTopologyStats& topology) {
   out << "coxmesh: " << s.ranks << " processes: " << s.levels << " levels, " << s.bytes_sent << " bytes exchanged ("
-      << (traced ? s.bytes_sent / traced : 0) << " per traced simplex), " << s.candidates_sent
-      << " simplices sent to their owners, " << s.foreign_evaluations
-      << " vertices evaluated by a rank that does not own them; the largest share " << s.largest_share << " of "
+      << (traced ? s.bytes_sent / traced : 0) << " per traced simplex), " << s.candidates_sent << " simplices and "
+      << s.vertex_values_sent << " vertex values sent to their owners; the largest share " << s.largest_share << " of "
       << traced << " simplices; " << s.oracle_tests << " oracle tests in all";
   if (topology.cells)
     out << "; topology: " << topology.cells_to_rank0 << " of " << topology.cells

@@ -21,12 +21,12 @@ using VertexEvaluator = std::function<void(const std::int32_t* v, double* out)>;
 /// What the distributed walk cost, summed over the ranks (for reports and benchmarks).
 struct DistributedTraceStats {
   int ranks = 1;
-  std::uint64_t levels = 0;               ///< breadth-first levels walked (each one exchange)
-  std::uint64_t bytes_sent = 0;           ///< between ranks, the final gather included
-  std::uint64_t foreign_evaluations = 0;  ///< F evaluated by a rank that does not own the vertex (uncounted)
-  std::uint64_t candidates_sent = 0;      ///< transverse simplices sent to their owner
-  std::uint64_t largest_share = 0;        ///< the most simplices of S one rank owns
-  std::uint64_t oracle_tests = 0;         ///< simplices tested, counted on every rank that tested them
+  std::uint64_t levels = 0;              ///< breadth-first levels walked (each one exchange)
+  std::uint64_t bytes_sent = 0;          ///< between ranks, the final gather included
+  std::uint64_t vertex_values_sent = 0;  ///< F values sent to ranks that do not own the vertex
+  std::uint64_t candidates_sent = 0;     ///< transverse simplices sent to their owner
+  std::uint64_t largest_share = 0;       ///< the most simplices of S one rank owns
+  std::uint64_t oracle_tests = 0;        ///< simplices tested, counted on every rank that tested them
 };
 
 /// The rank that owns lattice vertex v: a hash of its block (a cube of 2^owner_block_bits(d) lattice
@@ -81,8 +81,8 @@ void agreed(Communicator& comm, F&& step) {
 /// with the same arguments. Each rank walks the simplices it owns, level by level; the simplices it
 /// discovers for other ranks are sent to them once per level. `oracle` must read the vertex values
 /// from `values` (an ImplicitOracle made over it): before each level the values it will need are
-/// put there with `evaluate` (on every rank that reads them; the job's count of evaluations is
-/// that of one process: each vertex once, at its owner). On rank 0 the result, counts included, is
+/// put there, evaluated by the vertex's owner with `evaluate` and sent in batches, so F is
+/// evaluated once per lattice vertex in the whole job. On rank 0 the result, counts included, is
 /// the one trace_manifold returns (the same simplices in the same order); other ranks return an
 /// empty result. An exception on one rank is thrown, with the same message, on every rank.
 TraceResult trace_manifold_distributed(const Triangulation& triangulation, IntersectionOracle& oracle,

@@ -183,16 +183,16 @@ void DistributedWalk::walk() {
     }
     agree(failure);
     if (!go) return;
+    // The level's vertex values: τ's vertices and the one each cofacet adds (every vertex a test
+    // of the level can read).
+    vertices.clear();
+    for (std::uint32_t i = level_begin_; i < level_end_; ++i) {
+      const Simplex tau = mine_.simplex(i, d_);
+      for (int j = 0; j <= k_; ++j) tau.vertex(j, v), vertices.insert(vertices.end(), v, v + d_);
+      for_each_cofacet_vertex(tau, [&](const std::int32_t* w) { vertices.insert(vertices.end(), w, w + d_); });
+    }
+    fetch_vertex_values(vertices);
     try {
-      // The level's vertex values: τ's vertices and the one each cofacet adds (every vertex a test
-      // of the level can read).
-      vertices.clear();
-      for (std::uint32_t i = level_begin_; i < level_end_; ++i) {
-        const Simplex tau = mine_.simplex(i, d_);
-        for (int j = 0; j <= k_; ++j) tau.vertex(j, v), vertices.insert(vertices.end(), v, v + d_);
-        for_each_cofacet_vertex(tau, [&](const std::int32_t* w) { vertices.insert(vertices.end(), w, w + d_); });
-      }
-      fetch_vertex_values(vertices);
       walk_level();
     } catch (...) {
       failure = std::current_exception();
@@ -212,17 +212,17 @@ void DistributedWalk::add_seed(std::span<const double> seed, bool must_succeed) 
   const Simplex sigma = t_.locate(seed);
   SeedRings rings(sigma, d_);
   bool inside_hit = false, outside_hit = false;
-  std::uint64_t tests = 0, found_here = 0;  // (found_here: S's simplices found, over all ranks)
+  std::uint64_t tests = 0;
   std::vector<std::int32_t> vertices;
   reporting_ = false;
   for (int r = 0; r <= options_.seed_search_rings && !rings.ring().empty(); ++r) {
     const std::vector<Simplex>& ring = rings.ring();
+    vertices.resize(ring.size() * (d_ + 1) * d_);
+    for (std::size_t i = 0; i < ring.size(); ++i)
+      for (int j = 0; j <= d_; ++j) ring[i].vertex(j, vertices.data() + (i * (d_ + 1) + j) * d_);
+    fetch_vertex_values(vertices);
     std::exception_ptr failure;
     try {
-      vertices.resize(ring.size() * (d_ + 1) * d_);
-      for (std::size_t i = 0; i < ring.size(); ++i)
-        for (int j = 0; j <= d_; ++j) ring[i].vertex(j, vertices.data() + (i * (d_ + 1) + j) * d_);
-      fetch_vertex_values(vertices);
       for (const Simplex& s : ring) {
         FaceEnumerator faces(s, k_);
         for (Simplex tau; faces.next(tau);) {
@@ -236,19 +236,16 @@ void DistributedWalk::add_seed(std::span<const double> seed, bool must_succeed) 
     } catch (...) {
       failure = std::current_exception();
     }
-    // The ring's verdict is that of all its faces, each tested by its owner (one sum per ring).
-    std::uint64_t found[] = {failure ? 1u : 0u, inside_hit ? 1u : 0u, outside_hit ? 1u : 0u, next_.size()};
-    comm_.sum(found, 4);
+    // The ring's verdict is that of all its faces, each tested by its owner.
+    std::uint64_t found[] = {failure ? 1u : 0u, inside_hit ? 1u : 0u, outside_hit ? 1u : 0u};
+    comm_.sum(found, 3);
     if (found[0] != 0) agree(failure);
-    inside_hit = found[1] != 0, outside_hit = found[2] != 0, found_here = found[3];
+    inside_hit = found[1] != 0, outside_hit = found[2] != 0;
     if (inside_hit) break;
     rings.widen();
   }
   reporting_ = true;
-  if (found_here > 0)
-    append_level();
-  else  // (the seed lies on the part of S walked already, as most do: no level to order)
-    level_global_size_ = 0;
+  append_level();
   if (!inside_hit && must_succeed) throw_seed_not_found(seed, outside_hit, options_.seed_search_rings);
 }
 

@@ -57,8 +57,7 @@ class DistributedWalk {
   void exchange_candidates();
   void append_level();
   void fetch_vertex_values(const std::vector<std::int32_t>& vertices);
-  void evaluate_here(const std::int32_t* v, std::uint64_t hash, bool owned, double* out);
-  void count_shared_evaluations();  // Collective.
+  void evaluate_here(const std::int32_t* v, double* out);
   // Rethrows, on every rank, the first failure of any rank (nullptr: none here). Collective.
   void agree(std::exception_ptr failure);
   // The job's counts (oracle calls, F evaluations) into `r`, the cost into `stats`. Collective.
@@ -88,7 +87,7 @@ class DistributedWalk {
   PackedKeyIndex others_;
   std::vector<std::uint32_t> other_payload_;
   std::vector<double> outside_;
-  // Lattice vertices whose values are in values_ (evaluated here).
+  // Lattice vertices whose values are in values_.
   PackedKeyIndex known_vertices_;
   // Per rank: transverse simplices found for it this level, and the keys it owns tested here.
   std::vector<std::vector<std::byte>> candidates_out_, tested_out_;
@@ -106,7 +105,7 @@ class DistributedWalk {
   std::uint32_t fresh_key_[packed_words(kMaxDimension)];
   std::vector<double> point_;
   LastOwner last_owner_;  // (of a tested simplex's minimal vertex)
-  std::uint64_t calls_ = 0, tests_ = 0, evaluations_ = 0, foreign_evaluations_ = 0, candidates_sent_ = 0, levels_ = 0;
+  std::uint64_t calls_ = 0, tests_ = 0, evaluations_ = 0, vertex_values_sent_ = 0, candidates_sent_ = 0, levels_ = 0;
   std::size_t last_progress_ = 0;
   bool stopped_ = false;
 };

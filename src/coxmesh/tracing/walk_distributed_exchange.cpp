@@ -1,6 +1,6 @@
 // Thesis §4.2 over several processes: what the ranks of the distributed walk exchange, i.e. the
-// vertices evaluated for others (counted once), the discoveries of a level, the order of the next level, the failures
-// and, at the end, S itself (gathered on rank 0 in the order of the sequential walk).
+// vertex values, the discoveries of a level, the order of the next level, the failures and, at
+// the end, S itself (gathered on rank 0 in the order of the sequential walk).
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -81,12 +81,13 @@ void agree_on_failure(Communicator& comm, std::exception_ptr failure) {
 
 namespace walk {
 
-// The values of F (and D) at vertex v (hash h), evaluated now; counted if this rank owns v.
-void DistributedWalk::evaluate_here(const std::int32_t* v, std::uint64_t h, bool owned, double* out) {
+// The values of F (and D) at a vertex this rank owns, evaluated now if no one has.
+void DistributedWalk::evaluate_here(const std::int32_t* v, double* out) {
   const auto* key = reinterpret_cast<const std::uint32_t*>(v);
+  const std::uint64_t h = hash_words(key, d_);
   values_.get(v, h, out, [&](double* values) {
     evaluate_(v, values);
-    evaluations_ += owned;
+    ++evaluations_;
     for (int i = 0; i < values_.stride(); ++i)
       if (!std::isfinite(values[i])) {
         double x[kMaxDimension];
@@ -102,43 +103,65 @@ void DistributedWalk::evaluate_here(const std::int32_t* v, std::uint64_t h, bool
   known_vertices_.insert(key, h);
 }
 
-// Makes the values at `vertices` (d coordinates each, repeats allowed) readable from values_, each
-// evaluated here the first time: a message to the owner and back costs more than F, and without
-// one a level or a ring of the seed search needs no exchange before its tests. Only evaluations of
-// vertices owned here are counted; count_shared_evaluations() adds, at the end, the others that
-// their owners never evaluated. Throws EvaluationError where F is not finite.
+// Makes the values at `vertices` (d coordinates each, repeats allowed) readable from values_: the
+// vertices owned here are evaluated here, the others asked from their owners in one exchange.
 void DistributedWalk::fetch_vertex_values(const std::vector<std::int32_t>& vertices) {
-  std::vector<double> scratch(values_.stride());
-  // Hashed first, so that the look-ups (mostly of vertices known already: a level lists each
-  // vertex many times) fetch their slots ahead.
-  constexpr std::size_t kAhead = 16;
-  const std::size_t n = vertices.size() / d_;
-  std::vector<std::uint64_t> hashes(n);
-  for (std::size_t i = 0; i < n; ++i)
-    hashes[i] = hash_words(reinterpret_cast<const std::uint32_t*>(vertices.data() + i * d_), d_);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (i + kAhead < n) known_vertices_.prefetch(hashes[i + kAhead]);
-    if (i + kAhead / 2 < n) known_vertices_.prefetch_key(hashes[i + kAhead / 2]);
-    const std::int32_t* v = vertices.data() + i * d_;
-    if (known_vertices_.find(reinterpret_cast<const std::uint32_t*>(v), hashes[i]) == PackedKeyIndex::kAbsent)
-      evaluate_here(v, hashes[i], last_owner_.of(v) == rank_, scratch.data());
+  const int stride = values_.stride();
+  std::vector<double> scratch(stride);
+  std::vector<std::vector<std::byte>> requests(ranks_), replies(ranks_);
+  PackedKeyIndex asked(d_);
+  std::exception_ptr failure;
+  try {
+    // Hashed first, so that the look-ups (mostly of vertices known already: a level lists each
+    // vertex many times) fetch their slots ahead.
+    constexpr std::size_t kAhead = 16;
+    const std::size_t n = vertices.size() / d_;
+    std::vector<std::uint64_t> hashes(n);
+    for (std::size_t i = 0; i < n; ++i)
+      hashes[i] = hash_words(reinterpret_cast<const std::uint32_t*>(vertices.data() + i * d_), d_);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (i + kAhead < n) known_vertices_.prefetch(hashes[i + kAhead]);
+      if (i + kAhead / 2 < n) known_vertices_.prefetch_key(hashes[i + kAhead / 2]);
+      const std::int32_t* v = vertices.data() + i * d_;
+      const auto* key = reinterpret_cast<const std::uint32_t*>(v);
+      const std::uint64_t h = hashes[i];
+      if (known_vertices_.find(key, h) != PackedKeyIndex::kAbsent) continue;
+      const int owner = last_owner_.of(v);
+      if (owner == rank_)
+        evaluate_here(v, scratch.data());
+      else if (asked.insert(key, h).second)
+        put(requests[owner], v, d_);
+    }
+  } catch (...) {
+    failure = std::current_exception();
   }
-}
-
-// F is evaluated once per lattice vertex in one process: the job counts each vertex evaluated by
-// any rank once, at its owner (one exchange of the vertices evaluated here for other ranks).
-void DistributedWalk::count_shared_evaluations() {
-  std::vector<std::vector<std::byte>> evaluated(ranks_);
-  for (std::uint32_t i = 0; i < known_vertices_.size(); ++i) {
-    const auto* v = reinterpret_cast<const std::int32_t*>(known_vertices_.key(i));
-    if (const int owner = last_owner_.of(v); owner != rank_) put(evaluated[owner], v, d_), ++foreign_evaluations_;
-  }
+  agree(failure);
   std::vector<std::size_t> counts;
-  const std::vector<std::byte> in = comm_.exchange(evaluated, counts);
-  std::int32_t v[kMaxDimension];
-  for (const std::byte* at = in.data(); at < in.data() + in.size();) {
-    take(at, v, d_);
-    if (known_vertices_.insert(reinterpret_cast<const std::uint32_t*>(v)).second) ++evaluations_;
+  const std::vector<std::byte> asked_here = comm_.exchange(requests, counts);
+  try {
+    const std::byte* in = asked_here.data();
+    std::int32_t v[kMaxDimension];
+    for (int r = 0; r < ranks_; ++r)
+      for (std::size_t n = counts[r] / (sizeof(std::int32_t) * d_); n > 0; --n) {
+        take(in, v, d_);
+        evaluate_here(v, scratch.data());
+        put(replies[r], scratch.data(), stride);
+        ++vertex_values_sent_;
+      }
+  } catch (...) {
+    failure = std::current_exception();
+  }
+  agree(failure);
+  const std::vector<std::byte> answers = comm_.exchange(replies, counts);
+  const std::byte* in = answers.data();
+  for (int r = 0; r < ranks_; ++r) {
+    const auto* v = reinterpret_cast<const std::int32_t*>(requests[r].data());
+    for (std::size_t n = requests[r].size() / (sizeof(std::int32_t) * d_); n > 0; --n, v += d_) {
+      const auto* key = reinterpret_cast<const std::uint32_t*>(v);
+      const std::uint64_t h = hash_words(key, d_);
+      values_.get(v, h, scratch.data(), [&](double* values) { take(in, values, stride); });
+      known_vertices_.insert(key, h);
+    }
   }
 }
 
@@ -233,10 +256,9 @@ void DistributedWalk::append_level() {
 
 void DistributedWalk::sum_counts(std::uint64_t& oracle_calls, std::uint64_t& function_evaluations,
                                  DistributedTraceStats* stats) {
-  count_shared_evaluations();
   std::vector<std::size_t> counts;
   std::uint64_t sums[] = {
-      calls_, evaluations_ + oracle_.function_evaluations(), comm_.bytes_sent(), foreign_evaluations_, candidates_sent_,
+      calls_, evaluations_ + oracle_.function_evaluations(), comm_.bytes_sent(), vertex_values_sent_, candidates_sent_,
       tests_};
   comm_.sum(sums, 6);
   // The largest share of S (the balance of the split by lattice blocks).
