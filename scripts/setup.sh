@@ -5,7 +5,7 @@
 #   ./scripts/setup.sh --python  the same and the Python package (build/python)
 #   ./scripts/setup.sh --all     everything: also the tests, benchmarks and the Python package
 # Further arguments go to cmake's configure step (e.g. -DCOXMESH_SANITIZE=ON), except
-# "--target NAME", which builds that target only.
+# "--target NAME" (once or more), which builds those targets only.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mode=cli
@@ -36,8 +36,10 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}"
 fi
 build=${COXMESH_BUILD_DIR:-build}
+targets=()
 while [ $# -gt 0 ]; do
-  if [ "$1" = "--target" ]; then target=(--target "$2"); shift 2; else configure+=("$1"); shift; fi
+  if [ "$1" = "--target" ]; then targets+=("$2"); shift 2; else configure+=("$1"); shift; fi
 done
+[ ${#targets[@]} -eq 0 ] || target=(--target "${targets[@]}")
 cmake -S . -B "$build" "${configure[@]}"
 cmake --build "$build" -j "$(nproc)" "${target[@]}"
