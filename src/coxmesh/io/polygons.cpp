@@ -222,54 +222,49 @@ bool PolyhedronCursor::load(std::uint32_t c) {
         if (points3_) __builtin_prefetch(points3_ + 3 * std::size_t{v});
       }
   facets_of(*level_, kind_, c, n2_, faces_);
-  // The corners as first met, each with its index among them (seen_: the load's number and the
-  // index, per vertex).
-  corners_.clear(), local_.clear();
-  bool closed = faces_.size() >= 4;
+  corners_.clear();
+  if (faces_.size() < 4) return false;
+  // One pass over the faces' cycles: the corners numbered as first met, and every edge counted
+  // by those numbers as it goes by (closed: each in exactly two faces). A cell with more than 64
+  // corners, too many for the bit masks, has its edges counted by sorting instead.
   const std::uint64_t stamp = ++loads_;
+  bool few = true;
   for (std::uint32_t f : faces_) {
     const auto cycle = polygons_[f];
-    closed = closed && !cycle.empty();
-    for (std::uint32_t v : cycle) {
-      std::uint64_t& seen = seen_[v];
-      if (seen >> 32 != stamp) {
-        seen = stamp << 32 | corners_.size();
-        corners_.push_back(v);
-      }
-      local_.push_back(static_cast<std::uint32_t>(seen));
+    const std::size_t k = cycle.size();
+    if (k == 0) return false;
+    const std::uint32_t first = number(cycle[0], stamp);
+    std::uint32_t a = first;
+    for (std::size_t i = 1; i <= k; ++i) {
+      const std::uint32_t b = i < k ? number(cycle[i], stamp) : first;
+      const std::uint32_t low = std::min(a, b), high = std::max(a, b);
+      a = b;
+      if (high >= 64) few = false;
+      if (!few) continue;
+      const std::uint64_t bit = std::uint64_t{1} << high;
+      if (twice_[low] & bit) return false;
+      twice_[low] |= once_[low] & bit;
+      once_[low] ^= bit;
     }
   }
-  if (!closed) return false;
-  // Then ascending: the few corners are sorted with their first indices, which are renumbered.
-  order_.clear();
-  for (std::uint32_t i = 0; i < corners_.size(); ++i) order_.push_back(std::uint64_t{corners_[i]} << 32 | i);
-  sort_few(order_);
-  renumber_.resize(order_.size());
-  for (std::uint32_t i = 0; i < order_.size(); ++i) {
-    corners_[i] = static_cast<std::uint32_t>(order_[i] >> 32);
-    renumber_[static_cast<std::uint32_t>(order_[i])] = i;
+  if (few ? !std::all_of(once_, once_ + corners_.size(), [](std::uint64_t edges) { return edges == 0; })
+          : !closed_by_sorted_edges())
+    return false;
+  sort_few(corners_);
+  return true;
+}
+
+// Vertex v's number among the corners of the cell loaded (`stamp`), a new one when first met
+// (seen_: the load's stamp and the number, per vertex).
+std::uint32_t PolyhedronCursor::number(std::uint32_t v, std::uint64_t stamp) {
+  std::uint64_t& seen = seen_[v];
+  if (seen >> 32 != stamp) {
+    const std::uint32_t i = static_cast<std::uint32_t>(corners_.size());
+    seen = stamp << 32 | i;
+    corners_.push_back(v);
+    if (i < 64) once_[i] = twice_[i] = 0;
   }
-  for (std::uint32_t& i : local_) i = renumber_[i];
-  const std::size_t n = corners_.size();
-  if (n > 64) return closed_by_sorted_edges();
-  // Closed: every edge (pair of corners) in exactly two faces. Bit j of once[i] / twice[i]: edge
-  // {i, j}, i < j, seen once / twice so far.
-  std::uint64_t once[64], twice[64];
-  std::fill_n(once, n, 0), std::fill_n(twice, n, 0);
-  const std::uint32_t* cycle = local_.data();
-  for (std::uint32_t f : faces_) {
-    const std::size_t k = polygons_.offsets[f + 1] - polygons_.offsets[f];
-    for (std::size_t i = 0; i < k; ++i) {
-      std::uint32_t a = cycle[i], b = cycle[i + 1 < k ? i + 1 : 0];
-      if (a > b) std::swap(a, b);
-      const std::uint64_t bit = std::uint64_t{1} << b;
-      if (twice[a] & bit) return false;
-      twice[a] |= once[a] & bit;
-      once[a] ^= bit;
-    }
-    cycle += k;
-  }
-  return std::all_of(once, once + n, [](std::uint64_t edges) { return edges == 0; });
+  return static_cast<std::uint32_t>(seen);
 }
 
 // The same test for a cell with more than 64 corners: its edges' keys sorted, in pairs.
@@ -337,13 +332,22 @@ void orient_polygons(Ragged& polygons, const Ragged& edges, std::uint32_t edge_c
     if (state[start] || polygons[start].empty()) continue;
     state[start] = 1;
     component.assign(1, start);
+    // With points3: the signed volume of the cone from the origin over the component's fan
+    // triangles, summed in the queue's order as each polygon leaves it (its state is then settled).
+    double volume = 0;
     for (std::size_t head = 0; head < component.size(); ++head) {
-      if (head + kAhead < component.size()) {  // (its edge list first, then, nearer, its uses)
+      if (head + kAhead < component.size()) {  // (its edge list first, then, nearer, its uses and points)
         const std::uint32_t ahead = component[head + kAhead];
         __builtin_prefetch(edges.items.data() + edges.offsets[ahead]);
+        __builtin_prefetch(polygons.items.data() + polygons.offsets[ahead]);
         __builtin_prefetch(&state[ahead]);
       }
-      if (head + kAhead / 2 < component.size()) prefetch_uses(component[head + kAhead / 2]);
+      if (head + kAhead / 2 < component.size()) {
+        const std::uint32_t ahead = component[head + kAhead / 2];
+        prefetch_uses(ahead);
+        if (points3)
+          for (std::uint32_t v : polygons[ahead]) __builtin_prefetch(points3 + 3 * std::size_t{v});
+      }
       const std::uint32_t p = component[head];
       for (std::uint32_t e : edges[p]) {
         const Uses& u = uses[e];
@@ -356,30 +360,21 @@ void orient_polygons(Ragged& polygons, const Ragged& edges, std::uint32_t edge_c
         state[q] = p_forward == (u.side[other] & 1) ? 2 : 1;
         component.push_back(q);
       }
-    }
-    bool flip_all = false;
-    if (points3) {  // signed volume of the cone from the origin over the component's fan triangles
-      double volume = 0;
-      for (std::size_t i = 0; i < component.size(); ++i) {
-        if (i + kAhead < component.size())
-          for (std::uint32_t v : polygons[component[i + kAhead]]) __builtin_prefetch(points3 + 3 * std::size_t{v});
-        const std::uint32_t p = component[i];
-        // The fan of the cycle as it will be written: a reversed one is read as c0, c(k−1), …, c1.
-        const auto cycle = polygons[p];
-        const std::size_t k = cycle.size();
-        const bool reversed = state[p] == 2;
-        const auto at = [&](std::size_t i) { return cycle[reversed && i ? k - i : i]; };
-        const double* a = points3 + 3 * static_cast<std::size_t>(cycle[0]);
-        for (std::size_t i = 1; i + 1 < k; ++i) {
-          const double* b = points3 + 3 * static_cast<std::size_t>(at(i));
-          const double* c = points3 + 3 * static_cast<std::size_t>(at(i + 1));
-          volume += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-                    a[2] * (b[0] * c[1] - b[1] * c[0]);
-        }
+      if (!points3) continue;
+      // The fan of the cycle as it will be written: a reversed one is read as c0, c(k−1), …, c1.
+      const auto cycle = polygons[p];
+      const std::size_t k = cycle.size();
+      const bool reversed = state[p] == 2;
+      const auto at = [&](std::size_t i) { return cycle[reversed && i ? k - i : i]; };
+      const double* a = points3 + 3 * static_cast<std::size_t>(cycle[0]);
+      for (std::size_t i = 1; i + 1 < k; ++i) {
+        const double* b = points3 + 3 * static_cast<std::size_t>(at(i));
+        const double* c = points3 + 3 * static_cast<std::size_t>(at(i + 1));
+        volume += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+                  a[2] * (b[0] * c[1] - b[1] * c[0]);
       }
-      flip_all = volume < 0;
     }
-    if (flip_all)
+    if (volume < 0)
       for (std::uint32_t p : component) state[p] = static_cast<std::uint8_t>(3 - state[p]);
   }
   // The reversals in the order of the polygons, after the walks: one pass through their lists.

@@ -87,10 +87,9 @@ class PolyhedronCursor {
   std::span<const std::uint32_t> faces() const { return faces_; }
   /// When closed: its vertices (global ids), ascending, each once.
   std::span<const std::uint32_t> corners() const { return corners_; }
-  /// When closed: its faces' cycles one after the other, each vertex as its index in corners().
-  std::span<const std::uint32_t> local_cycles() const { return local_; }
 
  private:
+  std::uint32_t number(std::uint32_t v, std::uint64_t stamp);
   bool closed_by_sorted_edges();
 
   const CellLevel* level_;
@@ -99,9 +98,12 @@ class PolyhedronCursor {
   std::uint32_t n2_;
   bool as_listed_;  // (interior cells with no boundary face: their face ids as the level lists them)
   const double* points3_;
-  std::vector<std::uint32_t> faces_, corners_, local_, renumber_;
-  std::vector<std::uint64_t> seen_, order_, edges_;
+  std::vector<std::uint32_t> faces_, corners_;
+  std::vector<std::uint64_t> seen_, edges_;
   std::uint64_t loads_ = 0;
+  // Bit j of once_[i] / twice_[i]: the edge between the corners numbered i ≤ j < 64 (as first met)
+  // counted once / twice so far in the cell loaded.
+  std::uint64_t once_[64], twice_[64];
 };
 
 /// Reverses polygons first .. last−1 so that two of them sharing an edge traverse it in opposite
