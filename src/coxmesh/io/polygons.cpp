@@ -221,7 +221,12 @@ bool PolyhedronCursor::load(std::uint32_t c) {
         __builtin_prefetch(&seen_[v]);
         if (points3_) __builtin_prefetch(points3_ + 3 * std::size_t{v});
       }
-  facets_of(*level_, kind_, c, n2_, faces_);
+  if (as_listed_) {
+    faces_ = level_->facets(c);
+  } else {
+    facets_of(*level_, kind_, c, n2_, listed_faces_);
+    faces_ = listed_faces_;
+  }
   corners_.clear();
   if (faces_.size() < 4) return false;
   // One pass over the faces' cycles: the corners numbered as first met, and every edge counted
@@ -229,10 +234,12 @@ bool PolyhedronCursor::load(std::uint32_t c) {
   // corners, too many for the bit masks, has its edges counted by sorting instead.
   const std::uint64_t stamp = ++loads_;
   bool few = true;
+  incidences_ = 0;
   for (std::uint32_t f : faces_) {
     const auto cycle = polygons_[f];
     const std::size_t k = cycle.size();
     if (k == 0) return false;
+    incidences_ += k;
     const std::uint32_t first = number(cycle[0], stamp);
     std::uint32_t a = first;
     for (std::size_t i = 1; i <= k; ++i) {

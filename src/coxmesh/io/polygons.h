@@ -87,6 +87,8 @@ class PolyhedronCursor {
   std::span<const std::uint32_t> faces() const { return faces_; }
   /// When closed: its vertices (global ids), ascending, each once.
   std::span<const std::uint32_t> corners() const { return corners_; }
+  /// When closed: the vertices of its faces' cycles counted face by face (the length of them all).
+  std::size_t incidences() const { return incidences_; }
 
  private:
   std::uint32_t number(std::uint32_t v, std::uint64_t stamp);
@@ -98,7 +100,9 @@ class PolyhedronCursor {
   std::uint32_t n2_;
   bool as_listed_;  // (interior cells with no boundary face: their face ids as the level lists them)
   const double* points3_;
-  std::vector<std::uint32_t> faces_, corners_;
+  std::span<const std::uint32_t> faces_;  // (the level's own list, or listed_faces_)
+  std::vector<std::uint32_t> listed_faces_, corners_;
+  std::size_t incidences_ = 0;
   std::vector<std::uint64_t> seen_, edges_;
   std::uint64_t loads_ = 0;
   // Bit j of once_[i] / twice_[i]: the edge between the corners numbered i ≤ j < 64 (as first met)

@@ -95,10 +95,8 @@ void add_polyhedron(Grid<Index>& g, std::uint64_t domains, const PolyhedronCurso
   }
   g.add(kPolyhedron, 3, domains, corners);
   g.has_polyhedra = true;
-  std::size_t stream = 1 + faces.size();
-  for (std::uint32_t f : faces) stream += polygons.offsets[f + 1] - polygons.offsets[f];
   const std::size_t at = g.faces.size();
-  g.faces.resize(at + stream);
+  g.faces.resize(at + 1 + faces.size() + cell.incidences());
   Index* out = g.faces.data() + at;
   *out++ = static_cast<Index>(faces.size());
   for (std::uint32_t f : faces) {
@@ -110,13 +108,18 @@ void add_polyhedron(Grid<Index>& g, std::uint64_t domains, const PolyhedronCurso
     const double kd = static_cast<double>(k);
     Pair mid_xy{0, 0};
     double mid_z = 0;
+    // (each corner read once: the end b of one side is the start a of the next)
+    const double* first = p3 + 3 * std::size_t{cycle[0]};
+    double a[3] = {first[0], first[1], first[2]};
     for (std::size_t i = 0; i < k; ++i) {
-      const double *a = p3 + 3 * std::size_t{cycle[i]}, *b = p3 + 3 * std::size_t{cycle[i + 1 < k ? i + 1 : 0]};
+      const double* next = p3 + 3 * std::size_t{cycle[i + 1 < k ? i + 1 : 0]};
+      const double b[3] = {next[0], next[1], next[2]};
       normal[0] += (a[1] - b[1]) * (a[2] + b[2]);
       normal[1] += (a[2] - b[2]) * (a[0] + b[0]);
       normal[2] += (a[0] - b[0]) * (a[1] + b[1]);
       mid_xy += Pair{a[0], a[1]} / Pair{kd, kd};
       mid_z += a[2] / kd;
+      a[0] = b[0], a[1] = b[1], a[2] = b[2];
     }
     double dot = 0;  // (summed in the order x, y, z)
     dot += normal[0] * (mid_xy[0] - centre_xy[0]);
