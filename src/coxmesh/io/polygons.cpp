@@ -229,49 +229,51 @@ bool PolyhedronCursor::load(std::uint32_t c) {
   }
   corners_.clear();
   if (faces_.size() < 4) return false;
-  // One pass over the faces' cycles: the corners numbered as first met, and every edge counted
-  // by those numbers as it goes by (closed: each in exactly two faces). A cell with more than 64
-  // corners, too many for the bit masks, has its edges counted by sorting instead.
-  const std::uint64_t stamp = ++loads_;
-  bool few = true;
   incidences_ = 0;
   for (std::uint32_t f : faces_) {
-    const auto cycle = polygons_[f];
-    const std::size_t k = cycle.size();
+    const std::uint32_t k = polygons_.offsets[f + 1] - polygons_.offsets[f];
     if (k == 0) return false;
     incidences_ += k;
-    const std::uint32_t first = number(cycle[0], stamp);
-    std::uint32_t a = first;
-    for (std::size_t i = 1; i <= k; ++i) {
-      const std::uint32_t b = i < k ? number(cycle[i], stamp) : first;
-      const std::uint32_t low = std::min(a, b), high = std::max(a, b);
-      a = b;
-      if (high >= 64) few = false;
-      if (!few) continue;
-      const std::uint64_t bit = std::uint64_t{1} << high;
-      if (twice_[low] & bit) return false;
-      twice_[low] |= once_[low] & bit;
-      once_[low] ^= bit;
-    }
   }
-  if (few ? !std::all_of(once_, once_ + corners_.size(), [](std::uint64_t edges) { return edges == 0; })
-          : !closed_by_sorted_edges())
-    return false;
+  // Vertex v's number among the corners, a new one when first met (seen_: the load's stamp and the
+  // number, per vertex).
+  const std::uint64_t stamp = ++loads_;
+  const auto number = [&](std::uint32_t v) {
+    std::uint64_t& seen = seen_[v];
+    if (seen >> 32 != stamp) {
+      const std::uint32_t i = static_cast<std::uint32_t>(corners_.size());
+      seen = stamp << 32 | i;
+      corners_.push_back(v);
+      if (i < 64) once_[i] = twice_[i] = 0;
+    }
+    return static_cast<std::uint32_t>(seen);
+  };
+  if (incidences_ > 64) {  // (maybe more than 64 corners, too many for the bit masks below)
+    for (std::uint32_t f : faces_)
+      for (std::uint32_t v : polygons_[f]) number(v);
+    if (!closed_by_sorted_edges()) return false;
+  } else {
+    // One pass over the faces' cycles: the corners numbered as first met, and every edge counted
+    // by those numbers as it goes by (closed: each in exactly two faces).
+    for (std::uint32_t f : faces_) {
+      const auto cycle = polygons_[f];
+      const std::size_t k = cycle.size();
+      const std::uint32_t first = number(cycle[0]);
+      std::uint32_t a = first;
+      for (std::size_t i = 1; i <= k; ++i) {
+        const std::uint32_t b = i < k ? number(cycle[i]) : first;
+        const std::uint32_t low = std::min(a, b);
+        const std::uint64_t bit = std::uint64_t{1} << std::max(a, b);
+        a = b;
+        if (twice_[low] & bit) return false;
+        twice_[low] |= once_[low] & bit;
+        once_[low] ^= bit;
+      }
+    }
+    if (!std::all_of(once_, once_ + corners_.size(), [](std::uint64_t edges) { return edges == 0; })) return false;
+  }
   sort_few(corners_);
   return true;
-}
-
-// Vertex v's number among the corners of the cell loaded (`stamp`), a new one when first met
-// (seen_: the load's stamp and the number, per vertex).
-std::uint32_t PolyhedronCursor::number(std::uint32_t v, std::uint64_t stamp) {
-  std::uint64_t& seen = seen_[v];
-  if (seen >> 32 != stamp) {
-    const std::uint32_t i = static_cast<std::uint32_t>(corners_.size());
-    seen = stamp << 32 | i;
-    corners_.push_back(v);
-    if (i < 64) once_[i] = twice_[i] = 0;
-  }
-  return static_cast<std::uint32_t>(seen);
 }
 
 // The same test for a cell with more than 64 corners: its edges' keys sorted, in pairs.

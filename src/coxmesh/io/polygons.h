@@ -91,7 +91,6 @@ class PolyhedronCursor {
   std::size_t incidences() const { return incidences_; }
 
  private:
-  std::uint32_t number(std::uint32_t v, std::uint64_t stamp);
   bool closed_by_sorted_edges();
 
   const CellLevel* level_;
