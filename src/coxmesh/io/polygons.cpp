@@ -101,14 +101,14 @@ IndexArray edge_end_pairs(const CellComplex& cc) {
   return pairs;
 }
 
-// polygon_cycles, and with `cycle_edges` the global id of each cycle's edges too: edge i joins
+// polygon_cycles, and with `cycle_edges` (kEdges) the global id of each cycle's edges too: edge i joins
 // vertices i and i + 1 (the last joins the last vertex and the first).
+template <bool kEdges>
 Ragged polygon_cycles(const CellComplex& cc, Ragged* cycle_edges) {
   Ragged cycles;
   const IndexArray ends = edge_end_pairs(cc);
   const std::uint32_t n1 = cell_count(cc, CellKind::interior, 1);
-  std::vector<std::uint32_t> list, first_end, second_end;
-  std::vector<std::uint8_t> used;
+  std::vector<std::uint32_t> list, spill;
   std::size_t polygons = 0, corners = 0;  // (sizes known: the arrays grow once)
   for (CellKind kind : {CellKind::interior, CellKind::boundary})
     if (const CellLevel* level = cell_level(cc, kind, 2))
@@ -134,48 +134,48 @@ Ragged polygon_cycles(const CellComplex& cc, Ragged* cycle_edges) {
       const std::span<const std::uint32_t> edges = as_listed ? level->facets(c) : std::span<const std::uint32_t>(list);
       const std::size_t n = edges.size();
       bool closed = n >= 3;
-      // (a polygon has a few edges as a rule: their ends on the stack)
+      // (a polygon has a few edges as a rule: their ends and ids on the stack)
       constexpr std::size_t kFew = 16;
-      std::uint32_t few_ends[2 * kFew];
-      std::uint8_t few_used[kFew];
-      if (n > kFew) first_end.resize(n), second_end.resize(n), used.resize(n);
-      std::uint32_t* first = n > kFew ? first_end.data() : few_ends;
-      std::uint32_t* second = n > kFew ? second_end.data() : few_ends + kFew;
-      std::uint8_t* in_cycle = n > kFew ? used.data() : few_used;
+      std::uint32_t few[3 * kFew];
+      if (n > kFew) spill.resize(3 * n);
+      std::uint32_t* first = n > kFew ? spill.data() : few;
+      std::uint32_t* second = first + std::max(n, kFew);
+      std::uint32_t* id = second + std::max(n, kFew);
       for (std::size_t i = 0; i < n && closed; ++i) {
         first[i] = ends[2 * std::size_t{edges[i]}], second[i] = ends[2 * std::size_t{edges[i]} + 1];
+        if constexpr (kEdges) id[i] = edges[i];
         closed = first[i] != CellLevel::kNone;
       }
       if (closed) {
-        // Walk: from the second end of the first edge, repeatedly take the unused edge at the
-        // current vertex. A convex polygon has few edges, so the quadratic search is cheap.
-        // (a constant length for the few on the stack: one store, not a call to memset per polygon)
-        if (n > kFew)
-          std::fill_n(in_cycle, n, std::uint8_t{0});
-        else
-          std::fill_n(few_used, kFew, std::uint8_t{0});
-        in_cycle[0] = 1;
+        // Walk: from the second end of the first edge, repeatedly take the edge at the current
+        // vertex (a convex polygon has two at each vertex: one is the edge it was reached by).
+        // The edges not taken are kept at the front, a taken one swapped with the last of them;
+        // a polygon has few edges, so the quadratic search is cheap.
         const std::uint32_t start = first[0];
-        std::size_t length = 1;
         cycles.items.push_back(start);
-        if (cycle_edges) cycle_edges->items.push_back(edges[0]);
+        if constexpr (kEdges) cycle_edges->items.push_back(id[0]);
         std::uint32_t current = second[0];
+        std::size_t left = n - 1;
+        first[0] = first[left], second[0] = second[left];
+        if constexpr (kEdges) id[0] = id[left];
         while (current != start && closed) {
           cycles.items.push_back(current);
-          ++length;
           closed = false;
-          for (std::size_t i = 0; i < n && !closed; ++i) {
-            if (in_cycle[i] || (first[i] != current && second[i] != current)) continue;
-            in_cycle[i] = 1;
-            if (cycle_edges) cycle_edges->items.push_back(edges[i]);
+          for (std::size_t i = 0; i < left; ++i) {
+            if (first[i] != current && second[i] != current) continue;
+            if constexpr (kEdges) cycle_edges->items.push_back(id[i]);
             current = first[i] == current ? second[i] : first[i];
+            --left;
+            first[i] = first[left], second[i] = second[left];
+            if constexpr (kEdges) id[i] = id[left];
             closed = true;
+            break;
           }
         }
-        closed = closed && length == n && std::all_of(in_cycle, in_cycle + n, [](std::uint8_t u) { return u; });
+        closed = closed && left == 0;
       }
       close_list(cycles, closed);
-      if (cycle_edges) close_list(*cycle_edges, closed);
+      if constexpr (kEdges) close_list(*cycle_edges, closed);
     }
   }
   return cycles;
@@ -183,15 +183,15 @@ Ragged polygon_cycles(const CellComplex& cc, Ragged* cycle_edges) {
 
 }  // namespace
 
-Ragged polygon_cycles(const CellComplex& cc) { return polygon_cycles(cc, nullptr); }
+Ragged polygon_cycles(const CellComplex& cc) { return polygon_cycles<false>(cc, nullptr); }
 
 Ragged oriented_polygon_cycles(const CellComplex& cc, const double* points3) {
   const std::uint32_t n2 = cell_count(cc, CellKind::interior, 2);
   // (the edges of the cycles are only needed to orient some: none of a 3-manifold without boundary)
   const int m = cc.manifold_dimension;
-  if (m != 2 && (m != 3 || cell_count(cc, CellKind::boundary, 2) == 0)) return polygon_cycles(cc, nullptr);
+  if (m != 2 && (m != 3 || cell_count(cc, CellKind::boundary, 2) == 0)) return polygon_cycles<false>(cc, nullptr);
   Ragged edges;
-  Ragged polygons = polygon_cycles(cc, &edges);
+  Ragged polygons = polygon_cycles<true>(cc, &edges);
   const std::uint32_t n_edges = cell_count(cc, CellKind::interior, 1) + cell_count(cc, CellKind::boundary, 1);
   if (cc.manifold_dimension == 2) orient_polygons(polygons, edges, n_edges, 0, n2, points3);
   if (cc.manifold_dimension == 3) orient_polygons(polygons, edges, n_edges, n2, polygons.size(), points3);
