@@ -427,7 +427,7 @@ bool closed_by_counting(std::span<const std::uint32_t> faces, const Ragged& poly
   return std::all_of(uses.begin(), uses.end(), [](const auto& u) { return u.second == 2; });
 }
 
-// Every cell of every 3-level against the reference, with its corners and local cycles.
+// Every cell of every 3-level against the reference, with its corners.
 void expect_cursor_agrees(const CellComplex& cc, const Ragged& polygons, const std::string& what, int* open = nullptr) {
   for (CellKind kind : {CellKind::interior, CellKind::boundary}) {
     PolyhedronCursor cell(cc, kind, polygons);
@@ -438,17 +438,10 @@ void expect_cursor_agrees(const CellComplex& cc, const Ragged& polygons, const s
       if (open) *open += closed ? 0 : 1;
       if (!closed) continue;
       std::set<std::uint32_t> corners;
-      std::vector<std::uint32_t> cycles;
-      for (std::uint32_t f : cell.faces()) {
-        corners.insert(polygons[f].begin(), polygons[f].end());
-        cycles.insert(cycles.end(), polygons[f].begin(), polygons[f].end());
-      }
+      for (std::uint32_t f : cell.faces()) corners.insert(polygons[f].begin(), polygons[f].end());
       ASSERT_EQ(std::vector<std::uint32_t>(corners.begin(), corners.end()),
                 std::vector<std::uint32_t>(cell.corners().begin(), cell.corners().end()))
           << what;
-      ASSERT_EQ(cell.local_cycles().size(), cycles.size()) << what;
-      for (std::size_t i = 0; i < cycles.size(); ++i)
-        ASSERT_EQ(cell.corners()[cell.local_cycles()[i]], cycles[i]) << what;
     }
   }
 }
@@ -493,7 +486,7 @@ TEST(Polygons, PolyhedronCursorMatchesEdgeCounting) {
 
 TEST(Polygons, PolyhedronCursorWithManyCorners) {
   // Cells of S^3 in R^4 given synthetic faces: two "pillows" (two faces on one cycle each), closed
-  // by the edge count, with 60 corners (a bit mask per corner) and 80 (sorted edge keys); then
+  // by the edge count, with 64 incidences (a bit mask per corner) and 160 (sorted edge keys); then
   // one face of a pillow replaced by another cycle.
   const CellComplex cc = trace({"S^3 in R^4", sphere(3, 4, 1.0), nullptr, 0.6});
   const Ragged real = polygon_cycles(cc);
@@ -502,7 +495,7 @@ TEST(Polygons, PolyhedronCursorWithManyCorners) {
   while (cell < probe.size() && (probe.load(cell), probe.faces().size() != 4)) ++cell;
   ASSERT_LT(cell, probe.size());
   const std::vector<std::uint32_t> faces(probe.faces().begin(), probe.faces().end());
-  for (std::uint32_t half : {30u, 40u})
+  for (std::uint32_t half : {16u, 40u})
     for (bool broken : {false, true}) {
       std::vector<std::vector<std::uint32_t>> cycles(real.size());
       std::vector<std::uint32_t> a(half), b(half);

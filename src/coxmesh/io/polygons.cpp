@@ -101,14 +101,14 @@ IndexArray edge_end_pairs(const CellComplex& cc) {
   return pairs;
 }
 
-// polygon_cycles, and with `cycle_edges` the global id of each cycle's edges too: edge i joins
+// polygon_cycles, and with `cycle_edges` (kEdges) the global id of each cycle's edges too: edge i joins
 // vertices i and i + 1 (the last joins the last vertex and the first).
+template <bool kEdges>
 Ragged polygon_cycles(const CellComplex& cc, Ragged* cycle_edges) {
   Ragged cycles;
   const IndexArray ends = edge_end_pairs(cc);
   const std::uint32_t n1 = cell_count(cc, CellKind::interior, 1);
-  std::vector<std::uint32_t> list, first_end, second_end;
-  std::vector<std::uint8_t> used;
+  std::vector<std::uint32_t> list, spill;
   std::size_t polygons = 0, corners = 0;  // (sizes known: the arrays grow once)
   for (CellKind kind : {CellKind::interior, CellKind::boundary})
     if (const CellLevel* level = cell_level(cc, kind, 2))
@@ -134,48 +134,48 @@ Ragged polygon_cycles(const CellComplex& cc, Ragged* cycle_edges) {
       const std::span<const std::uint32_t> edges = as_listed ? level->facets(c) : std::span<const std::uint32_t>(list);
       const std::size_t n = edges.size();
       bool closed = n >= 3;
-      // (a polygon has a few edges as a rule: their ends on the stack)
+      // (a polygon has a few edges as a rule: their ends and ids on the stack)
       constexpr std::size_t kFew = 16;
-      std::uint32_t few_ends[2 * kFew];
-      std::uint8_t few_used[kFew];
-      if (n > kFew) first_end.resize(n), second_end.resize(n), used.resize(n);
-      std::uint32_t* first = n > kFew ? first_end.data() : few_ends;
-      std::uint32_t* second = n > kFew ? second_end.data() : few_ends + kFew;
-      std::uint8_t* in_cycle = n > kFew ? used.data() : few_used;
+      std::uint32_t few[3 * kFew];
+      if (n > kFew) spill.resize(3 * n);
+      std::uint32_t* first = n > kFew ? spill.data() : few;
+      std::uint32_t* second = first + std::max(n, kFew);
+      std::uint32_t* id = second + std::max(n, kFew);
       for (std::size_t i = 0; i < n && closed; ++i) {
         first[i] = ends[2 * std::size_t{edges[i]}], second[i] = ends[2 * std::size_t{edges[i]} + 1];
+        if constexpr (kEdges) id[i] = edges[i];
         closed = first[i] != CellLevel::kNone;
       }
       if (closed) {
-        // Walk: from the second end of the first edge, repeatedly take the unused edge at the
-        // current vertex. A convex polygon has few edges, so the quadratic search is cheap.
-        // (a constant length for the few on the stack: one store, not a call to memset per polygon)
-        if (n > kFew)
-          std::fill_n(in_cycle, n, std::uint8_t{0});
-        else
-          std::fill_n(few_used, kFew, std::uint8_t{0});
-        in_cycle[0] = 1;
+        // Walk: from the second end of the first edge, repeatedly take the edge at the current
+        // vertex (a convex polygon has two at each vertex: one is the edge it was reached by).
+        // The edges not taken are kept at the front, a taken one swapped with the last of them;
+        // a polygon has few edges, so the quadratic search is cheap.
         const std::uint32_t start = first[0];
-        std::size_t length = 1;
         cycles.items.push_back(start);
-        if (cycle_edges) cycle_edges->items.push_back(edges[0]);
+        if constexpr (kEdges) cycle_edges->items.push_back(id[0]);
         std::uint32_t current = second[0];
+        std::size_t left = n - 1;
+        first[0] = first[left], second[0] = second[left];
+        if constexpr (kEdges) id[0] = id[left];
         while (current != start && closed) {
           cycles.items.push_back(current);
-          ++length;
           closed = false;
-          for (std::size_t i = 0; i < n && !closed; ++i) {
-            if (in_cycle[i] || (first[i] != current && second[i] != current)) continue;
-            in_cycle[i] = 1;
-            if (cycle_edges) cycle_edges->items.push_back(edges[i]);
+          for (std::size_t i = 0; i < left; ++i) {
+            if (first[i] != current && second[i] != current) continue;
+            if constexpr (kEdges) cycle_edges->items.push_back(id[i]);
             current = first[i] == current ? second[i] : first[i];
+            --left;
+            first[i] = first[left], second[i] = second[left];
+            if constexpr (kEdges) id[i] = id[left];
             closed = true;
+            break;
           }
         }
-        closed = closed && length == n && std::all_of(in_cycle, in_cycle + n, [](std::uint8_t u) { return u; });
+        closed = closed && left == 0;
       }
       close_list(cycles, closed);
-      if (cycle_edges) close_list(*cycle_edges, closed);
+      if constexpr (kEdges) close_list(*cycle_edges, closed);
     }
   }
   return cycles;
@@ -183,15 +183,15 @@ Ragged polygon_cycles(const CellComplex& cc, Ragged* cycle_edges) {
 
 }  // namespace
 
-Ragged polygon_cycles(const CellComplex& cc) { return polygon_cycles(cc, nullptr); }
+Ragged polygon_cycles(const CellComplex& cc) { return polygon_cycles<false>(cc, nullptr); }
 
 Ragged oriented_polygon_cycles(const CellComplex& cc, const double* points3) {
   const std::uint32_t n2 = cell_count(cc, CellKind::interior, 2);
   // (the edges of the cycles are only needed to orient some: none of a 3-manifold without boundary)
   const int m = cc.manifold_dimension;
-  if (m != 2 && (m != 3 || cell_count(cc, CellKind::boundary, 2) == 0)) return polygon_cycles(cc, nullptr);
+  if (m != 2 && (m != 3 || cell_count(cc, CellKind::boundary, 2) == 0)) return polygon_cycles<false>(cc, nullptr);
   Ragged edges;
-  Ragged polygons = polygon_cycles(cc, &edges);
+  Ragged polygons = polygon_cycles<true>(cc, &edges);
   const std::uint32_t n_edges = cell_count(cc, CellKind::interior, 1) + cell_count(cc, CellKind::boundary, 1);
   if (cc.manifold_dimension == 2) orient_polygons(polygons, edges, n_edges, 0, n2, points3);
   if (cc.manifold_dimension == 3) orient_polygons(polygons, edges, n_edges, n2, polygons.size(), points3);
@@ -221,55 +221,59 @@ bool PolyhedronCursor::load(std::uint32_t c) {
         __builtin_prefetch(&seen_[v]);
         if (points3_) __builtin_prefetch(points3_ + 3 * std::size_t{v});
       }
-  facets_of(*level_, kind_, c, n2_, faces_);
-  // The corners as first met, each with its index among them (seen_: the load's number and the
-  // index, per vertex).
-  corners_.clear(), local_.clear();
-  bool closed = faces_.size() >= 4;
+  if (as_listed_) {
+    faces_ = level_->facets(c);
+  } else {
+    facets_of(*level_, kind_, c, n2_, listed_faces_);
+    faces_ = listed_faces_;
+  }
+  corners_.clear();
+  if (faces_.size() < 4) return false;
+  incidences_ = 0;
+  for (std::uint32_t f : faces_) {
+    const std::uint32_t k = polygons_.offsets[f + 1] - polygons_.offsets[f];
+    if (k == 0) return false;
+    incidences_ += k;
+  }
+  // Vertex v's number among the corners, a new one when first met (seen_: the load's stamp and the
+  // number, per vertex).
   const std::uint64_t stamp = ++loads_;
-  for (std::uint32_t f : faces_) {
-    const auto cycle = polygons_[f];
-    closed = closed && !cycle.empty();
-    for (std::uint32_t v : cycle) {
-      std::uint64_t& seen = seen_[v];
-      if (seen >> 32 != stamp) {
-        seen = stamp << 32 | corners_.size();
-        corners_.push_back(v);
+  const auto number = [&](std::uint32_t v) {
+    std::uint64_t& seen = seen_[v];
+    if (seen >> 32 != stamp) {
+      const std::uint32_t i = static_cast<std::uint32_t>(corners_.size());
+      seen = stamp << 32 | i;
+      corners_.push_back(v);
+      if (i < 64) once_[i] = twice_[i] = 0;
+    }
+    return static_cast<std::uint32_t>(seen);
+  };
+  if (incidences_ > 64) {  // (maybe more than 64 corners, too many for the bit masks below)
+    for (std::uint32_t f : faces_)
+      for (std::uint32_t v : polygons_[f]) number(v);
+    if (!closed_by_sorted_edges()) return false;
+  } else {
+    // One pass over the faces' cycles: the corners numbered as first met, and every edge counted
+    // by those numbers as it goes by (closed: each in exactly two faces).
+    for (std::uint32_t f : faces_) {
+      const auto cycle = polygons_[f];
+      const std::size_t k = cycle.size();
+      const std::uint32_t first = number(cycle[0]);
+      std::uint32_t a = first;
+      for (std::size_t i = 1; i <= k; ++i) {
+        const std::uint32_t b = i < k ? number(cycle[i]) : first;
+        const std::uint32_t low = std::min(a, b);
+        const std::uint64_t bit = std::uint64_t{1} << std::max(a, b);
+        a = b;
+        if (twice_[low] & bit) return false;
+        twice_[low] |= once_[low] & bit;
+        once_[low] ^= bit;
       }
-      local_.push_back(static_cast<std::uint32_t>(seen));
     }
+    if (!std::all_of(once_, once_ + corners_.size(), [](std::uint64_t edges) { return edges == 0; })) return false;
   }
-  if (!closed) return false;
-  // Then ascending: the few corners are sorted with their first indices, which are renumbered.
-  order_.clear();
-  for (std::uint32_t i = 0; i < corners_.size(); ++i) order_.push_back(std::uint64_t{corners_[i]} << 32 | i);
-  sort_few(order_);
-  renumber_.resize(order_.size());
-  for (std::uint32_t i = 0; i < order_.size(); ++i) {
-    corners_[i] = static_cast<std::uint32_t>(order_[i] >> 32);
-    renumber_[static_cast<std::uint32_t>(order_[i])] = i;
-  }
-  for (std::uint32_t& i : local_) i = renumber_[i];
-  const std::size_t n = corners_.size();
-  if (n > 64) return closed_by_sorted_edges();
-  // Closed: every edge (pair of corners) in exactly two faces. Bit j of once[i] / twice[i]: edge
-  // {i, j}, i < j, seen once / twice so far.
-  std::uint64_t once[64], twice[64];
-  std::fill_n(once, n, 0), std::fill_n(twice, n, 0);
-  const std::uint32_t* cycle = local_.data();
-  for (std::uint32_t f : faces_) {
-    const std::size_t k = polygons_.offsets[f + 1] - polygons_.offsets[f];
-    for (std::size_t i = 0; i < k; ++i) {
-      std::uint32_t a = cycle[i], b = cycle[i + 1 < k ? i + 1 : 0];
-      if (a > b) std::swap(a, b);
-      const std::uint64_t bit = std::uint64_t{1} << b;
-      if (twice[a] & bit) return false;
-      twice[a] |= once[a] & bit;
-      once[a] ^= bit;
-    }
-    cycle += k;
-  }
-  return std::all_of(once, once + n, [](std::uint64_t edges) { return edges == 0; });
+  sort_few(corners_);
+  return true;
 }
 
 // The same test for a cell with more than 64 corners: its edges' keys sorted, in pairs.
@@ -337,13 +341,22 @@ void orient_polygons(Ragged& polygons, const Ragged& edges, std::uint32_t edge_c
     if (state[start] || polygons[start].empty()) continue;
     state[start] = 1;
     component.assign(1, start);
+    // With points3: the signed volume of the cone from the origin over the component's fan
+    // triangles, summed in the queue's order as each polygon leaves it (its state is then settled).
+    double volume = 0;
     for (std::size_t head = 0; head < component.size(); ++head) {
-      if (head + kAhead < component.size()) {  // (its edge list first, then, nearer, its uses)
+      if (head + kAhead < component.size()) {  // (its edge list first, then, nearer, its uses and points)
         const std::uint32_t ahead = component[head + kAhead];
         __builtin_prefetch(edges.items.data() + edges.offsets[ahead]);
+        __builtin_prefetch(polygons.items.data() + polygons.offsets[ahead]);
         __builtin_prefetch(&state[ahead]);
       }
-      if (head + kAhead / 2 < component.size()) prefetch_uses(component[head + kAhead / 2]);
+      if (head + kAhead / 2 < component.size()) {
+        const std::uint32_t ahead = component[head + kAhead / 2];
+        prefetch_uses(ahead);
+        if (points3)
+          for (std::uint32_t v : polygons[ahead]) __builtin_prefetch(points3 + 3 * std::size_t{v});
+      }
       const std::uint32_t p = component[head];
       for (std::uint32_t e : edges[p]) {
         const Uses& u = uses[e];
@@ -356,30 +369,21 @@ void orient_polygons(Ragged& polygons, const Ragged& edges, std::uint32_t edge_c
         state[q] = p_forward == (u.side[other] & 1) ? 2 : 1;
         component.push_back(q);
       }
-    }
-    bool flip_all = false;
-    if (points3) {  // signed volume of the cone from the origin over the component's fan triangles
-      double volume = 0;
-      for (std::size_t i = 0; i < component.size(); ++i) {
-        if (i + kAhead < component.size())
-          for (std::uint32_t v : polygons[component[i + kAhead]]) __builtin_prefetch(points3 + 3 * std::size_t{v});
-        const std::uint32_t p = component[i];
-        // The fan of the cycle as it will be written: a reversed one is read as c0, c(k−1), …, c1.
-        const auto cycle = polygons[p];
-        const std::size_t k = cycle.size();
-        const bool reversed = state[p] == 2;
-        const auto at = [&](std::size_t i) { return cycle[reversed && i ? k - i : i]; };
-        const double* a = points3 + 3 * static_cast<std::size_t>(cycle[0]);
-        for (std::size_t i = 1; i + 1 < k; ++i) {
-          const double* b = points3 + 3 * static_cast<std::size_t>(at(i));
-          const double* c = points3 + 3 * static_cast<std::size_t>(at(i + 1));
-          volume += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-                    a[2] * (b[0] * c[1] - b[1] * c[0]);
-        }
+      if (!points3) continue;
+      // The fan of the cycle as it will be written: a reversed one is read as c0, c(k−1), …, c1.
+      const auto cycle = polygons[p];
+      const std::size_t k = cycle.size();
+      const bool reversed = state[p] == 2;
+      const auto at = [&](std::size_t i) { return cycle[reversed && i ? k - i : i]; };
+      const double* a = points3 + 3 * static_cast<std::size_t>(cycle[0]);
+      for (std::size_t i = 1; i + 1 < k; ++i) {
+        const double* b = points3 + 3 * static_cast<std::size_t>(at(i));
+        const double* c = points3 + 3 * static_cast<std::size_t>(at(i + 1));
+        volume += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+                  a[2] * (b[0] * c[1] - b[1] * c[0]);
       }
-      flip_all = volume < 0;
     }
-    if (flip_all)
+    if (volume < 0)
       for (std::uint32_t p : component) state[p] = static_cast<std::uint8_t>(3 - state[p]);
   }
   // The reversals in the order of the polygons, after the walks: one pass through their lists.

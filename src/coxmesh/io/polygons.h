@@ -87,8 +87,8 @@ class PolyhedronCursor {
   std::span<const std::uint32_t> faces() const { return faces_; }
   /// When closed: its vertices (global ids), ascending, each once.
   std::span<const std::uint32_t> corners() const { return corners_; }
-  /// When closed: its faces' cycles one after the other, each vertex as its index in corners().
-  std::span<const std::uint32_t> local_cycles() const { return local_; }
+  /// When closed: the vertices of its faces' cycles counted face by face (the length of them all).
+  std::size_t incidences() const { return incidences_; }
 
  private:
   bool closed_by_sorted_edges();
@@ -99,9 +99,14 @@ class PolyhedronCursor {
   std::uint32_t n2_;
   bool as_listed_;  // (interior cells with no boundary face: their face ids as the level lists them)
   const double* points3_;
-  std::vector<std::uint32_t> faces_, corners_, local_, renumber_;
-  std::vector<std::uint64_t> seen_, order_, edges_;
+  std::span<const std::uint32_t> faces_;  // (the level's own list, or listed_faces_)
+  std::vector<std::uint32_t> listed_faces_, corners_;
+  std::size_t incidences_ = 0;
+  std::vector<std::uint64_t> seen_, edges_;
   std::uint64_t loads_ = 0;
+  // Bit j of once_[i] / twice_[i]: the edge between the corners numbered i ≤ j < 64 (as first met)
+  // counted once / twice so far in the cell loaded.
+  std::uint64_t once_[64], twice_[64];
 };
 
 /// Reverses polygons first .. last−1 so that two of them sharing an edge traverse it in opposite

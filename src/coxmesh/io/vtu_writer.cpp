@@ -77,32 +77,28 @@ using Pair = double __attribute__((vector_size(16)));
 
 // Adds the closed 3-cell at `cell` as a VTK polyhedron with faces turned outwards (Newell normal
 // against the direction from the cell's centroid to the face's centroid). The face stream is
-// written in place, one resize per cell (its room is reserved by the caller). xyz: scratch space.
+// written in place, one resize per cell (its room is reserved by the caller).
 template <class Index>
 void add_polyhedron(Grid<Index>& g, std::uint64_t domains, const PolyhedronCursor& cell, const Ragged& polygons,
-                    const double* p3, std::vector<std::array<double, 3>>& xyz) {
+                    const double* p3) {
   const auto corners = cell.corners();
   const auto faces = cell.faces();
-  const auto local_cycles = cell.local_cycles();
-  xyz.resize(corners.size());
   // The centroids as sums of quotients, x and y in one packed division (the quotients are the
   // same, bit for bit, as one at a time).
   const double n = static_cast<double>(corners.size());
   Pair centre_xy{0, 0};
   double centre_z = 0;
-  for (std::size_t v = 0; v < corners.size(); ++v) {
-    const double* p = p3 + 3 * std::size_t{corners[v]};
-    xyz[v] = {p[0], p[1], p[2]};
+  for (std::uint32_t v : corners) {
+    const double* p = p3 + 3 * std::size_t{v};
     centre_xy += Pair{p[0], p[1]} / Pair{n, n};
     centre_z += p[2] / n;
   }
   g.add(kPolyhedron, 3, domains, corners);
   g.has_polyhedra = true;
   const std::size_t at = g.faces.size();
-  g.faces.resize(at + 1 + faces.size() + local_cycles.size());
+  g.faces.resize(at + 1 + faces.size() + cell.incidences());
   Index* out = g.faces.data() + at;
   *out++ = static_cast<Index>(faces.size());
-  const std::uint32_t* local = local_cycles.data();
   for (std::uint32_t f : faces) {
     const auto cycle = polygons[f];
     const std::size_t k = cycle.size();
@@ -112,15 +108,19 @@ void add_polyhedron(Grid<Index>& g, std::uint64_t domains, const PolyhedronCurso
     const double kd = static_cast<double>(k);
     Pair mid_xy{0, 0};
     double mid_z = 0;
+    // (each corner read once: the end b of one side is the start a of the next)
+    const double* first = p3 + 3 * std::size_t{cycle[0]};
+    double a[3] = {first[0], first[1], first[2]};
     for (std::size_t i = 0; i < k; ++i) {
-      const auto &a = xyz[local[i]], &b = xyz[local[i + 1 < k ? i + 1 : 0]];
+      const double* next = p3 + 3 * std::size_t{cycle[i + 1 < k ? i + 1 : 0]};
+      const double b[3] = {next[0], next[1], next[2]};
       normal[0] += (a[1] - b[1]) * (a[2] + b[2]);
       normal[1] += (a[2] - b[2]) * (a[0] + b[0]);
       normal[2] += (a[0] - b[0]) * (a[1] + b[1]);
       mid_xy += Pair{a[0], a[1]} / Pair{kd, kd};
       mid_z += a[2] / kd;
+      a[0] = b[0], a[1] = b[1], a[2] = b[2];
     }
-    local += k;
     double dot = 0;  // (summed in the order x, y, z)
     dot += normal[0] * (mid_xy[0] - centre_xy[0]);
     dot += normal[1] * (mid_xy[1] - centre_xy[1]);
@@ -223,7 +223,6 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
   g.ids = ids;
   const int p = std::min(m, 3);
   g.reserve(cc, p == 3 ? 2 : p, simplices);  // (3-cells: in pieces of their own)
-  std::vector<std::array<double, 3>> scratch_xyz;
   auto add_level = [&](CellKind kind, int dim) {
     const bool boundary = kind == CellKind::boundary;
     if (dim == 0) {
@@ -311,7 +310,6 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
       for (std::size_t i = 0; i < ranges.size(); ++i) cells3.emplace_back().ids = ids;
       skipped.assign(ranges.size(), 0);
       std::vector<PolyhedronCursor> cursors;
-      std::vector<std::vector<std::array<double, 3>>> scratch(workers);
       const auto add_range = [&](std::size_t r, int worker) {
         const auto [kind, begin, end] = ranges[r];
         Grid<Index>& piece = cells3[r];
@@ -338,7 +336,7 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
                                         piece.add(kTetrahedron, 3, on_boundary ? 1 : domains_of(3, c), t);
                                       });
           } else {
-            add_polyhedron(piece, on_boundary ? 1 : domains_of(3, c), cell, polygons, p3.data(), scratch[worker]);
+            add_polyhedron(piece, on_boundary ? 1 : domains_of(3, c), cell, polygons, p3.data());
           }
         }
       };
