@@ -220,9 +220,12 @@ Intersection ImplicitOracle::intersect(const Simplex& tau, double* point) {
   Intersection r{true, -1.0};
   double xs[32 * kMaxDimension];
   triangulation_.vertex_coordinates(tau, xs);
-  for (int i = 0; i < d_; ++i) point[i] = 0;
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < d_; ++i) point[i] += lambda[j] * xs[j * d_ + i];
+  with_oracle_dimension(d_, [&](auto fixed_d) {
+    const int d = decltype(fixed_d)::value ? decltype(fixed_d)::value : d_;
+    for (int i = 0; i < d; ++i) point[i] = 0;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < d; ++i) point[i] += lambda[j] * xs[j * d + i];
+  });
   if (domain_) {
     r.domain = 0;
     for (int j = 0; j < n; ++j) r.domain += lambda[j] * dval[j];
