@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <sstream>
 #include <utility>
@@ -67,12 +68,19 @@ void with_oracle_dimension(int d, F&& f) {
 }  // namespace
 
 // The slot of v among the recent vertices: a sum of independent products, cheaper than the chain of
-// hash_words (the big table's hash, needed only when the slot holds another vertex).
+// hash_words (the big table's hash, needed only when the slot holds another vertex). Two coordinates
+// per 64-bit word: half the products (each coordinate still moves the top bits, the slot).
 template <int D>
 [[gnu::always_inline]] inline std::size_t ImplicitOracle::front_slot(const std::int32_t* v) const {
   const int d = D ? D : d_;
   std::uint64_t h = 0;
-  for (int i = 0; i < d; ++i) h += static_cast<std::uint64_t>(static_cast<std::uint32_t>(v[i])) * kSlotMultipliers[i];
+  int i = 0;
+  for (; i + 1 < d; i += 2) {
+    std::uint64_t pair;
+    std::memcpy(&pair, v + i, sizeof pair);
+    h += pair * kSlotMultipliers[i / 2];
+  }
+  if (i < d) h += static_cast<std::uint64_t>(static_cast<std::uint32_t>(v[i])) * kSlotMultipliers[i / 2];
   return h >> (64 - kFrontBits);
 }
 
@@ -81,8 +89,15 @@ template <int D>
   if (!front_used_[slot]) return false;
   const int d = D ? D : d_;
   const std::int32_t* front_key = front_keys_.data() + slot * d;
-  std::int32_t diff = 0;  // (std::equal would call memcmp for a few ints)
-  for (int i = 0; i < d; ++i) diff |= v[i] ^ front_key[i];
+  std::uint64_t diff = 0;  // (std::equal would call memcmp for a few ints), two coordinates at a time
+  int i = 0;
+  for (; i + 1 < d; i += 2) {
+    std::uint64_t a, b;
+    std::memcpy(&a, v + i, sizeof a);
+    std::memcpy(&b, front_key + i, sizeof b);
+    diff |= a ^ b;
+  }
+  if (i < d) diff |= static_cast<std::uint32_t>(v[i] ^ front_key[i]);
   return diff == 0;
 }
 
