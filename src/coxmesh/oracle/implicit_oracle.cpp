@@ -4,12 +4,15 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include "coxmesh/lattice/cofaces.h"
 #include "coxmesh/lattice/faces.h"
 #include "coxmesh/oracle/transversality.h"
+#include "coxmesh/util/fixed_dimension.h"
 
 namespace coxmesh {
 
@@ -56,37 +59,63 @@ constexpr auto kSlotMultipliers = [] {
   return m;
 }();
 
+// The dimensions the oracle's hot paths are compiled for (D = 0: any other d, read at run time).
+template <class F>
+void with_oracle_dimension(int d, F&& f) {
+  with_fixed_dimension<3, 4, 6, 9>(d, std::forward<F>(f));
+}
+
 }  // namespace
 
 // The slot of v among the recent vertices: a sum of independent products, cheaper than the chain of
-// hash_words (the big table's hash, needed only when the slot holds another vertex).
+// hash_words (the big table's hash, needed only when the slot holds another vertex). Two coordinates
+// per 64-bit word: half the products (each coordinate still moves the top bits, the slot).
+template <int D>
 [[gnu::always_inline]] inline std::size_t ImplicitOracle::front_slot(const std::int32_t* v) const {
+  const int d = D ? D : d_;
   std::uint64_t h = 0;
-  for (int i = 0; i < d_; ++i) h += static_cast<std::uint64_t>(static_cast<std::uint32_t>(v[i])) * kSlotMultipliers[i];
+  int i = 0;
+  for (; i + 1 < d; i += 2) {
+    std::uint64_t pair;
+    std::memcpy(&pair, v + i, sizeof pair);
+    h += pair * kSlotMultipliers[i / 2];
+  }
+  if (i < d) h += static_cast<std::uint64_t>(static_cast<std::uint32_t>(v[i])) * kSlotMultipliers[i / 2];
   return h >> (64 - kFrontBits);
 }
 
+template <int D>
 [[gnu::always_inline]] inline bool ImplicitOracle::front_holds(std::size_t slot, const std::int32_t* v) const {
   if (!front_used_[slot]) return false;
-  const std::int32_t* front_key = front_keys_.data() + slot * d_;
-  std::int32_t diff = 0;  // (std::equal would call memcmp for a few ints)
-  for (int i = 0; i < d_; ++i) diff |= v[i] ^ front_key[i];
+  const int d = D ? D : d_;
+  const std::int32_t* front_key = front_keys_.data() + slot * d;
+  std::uint64_t diff = 0;  // (std::equal would call memcmp for a few ints), two coordinates at a time
+  int i = 0;
+  for (; i + 1 < d; i += 2) {
+    std::uint64_t a, b;
+    std::memcpy(&a, v + i, sizeof a);
+    std::memcpy(&b, front_key + i, sizeof b);
+    diff |= a ^ b;
+  }
+  if (i < d) diff |= static_cast<std::uint32_t>(v[i] ^ front_key[i]);
   return diff == 0;
 }
 
+template <int D>
 const double* ImplicitOracle::values_at(const std::int32_t* v) {
+  const int d = D ? D : d_;
   if (!cache_enabled_) {
     evaluate(v, scratch_.data());
     return scratch_.data();
   }
   // The walk meets each vertex many times within a short while: a small direct-mapped cache of
   // recent vertices (a few cache lines per probe) answers most lookups before the big table.
-  const std::size_t slot = front_slot(v);
-  std::int32_t* front_key = front_keys_.data() + slot * d_;
+  const std::size_t slot = front_slot<D>(v);
+  std::int32_t* front_key = front_keys_.data() + slot * d;
   double* front = front_values_.data() + slot * stride_;
-  if (front_holds(slot, v)) return front;
+  if (front_holds<D>(slot, v)) return front;
   const auto* key = reinterpret_cast<const std::uint32_t*>(v);
-  const std::uint64_t h = hash_words(key, d_);
+  const std::uint64_t h = hash_words(key, d);
   front_used_[slot] = 0;
   if (shared_) {
     shared_->get(v, h, front, [&](double* out) { evaluate(v, out); });
@@ -104,7 +133,7 @@ const double* ImplicitOracle::values_at(const std::int32_t* v) {
     }
     std::copy(stored, stored + stride_, front);
   }
-  std::copy(v, v + d_, front_key);
+  std::copy(v, v + d, front_key);
   front_used_[slot] = 1;
   return front;
 }
@@ -181,15 +210,18 @@ std::string ImplicitOracle::not_finite_message(const std::int32_t* v, int i, dou
 
 // M(τ) of thesis §4.3, column-major: column j = (1, F(v_j)); and D at the vertices when asked.
 void ImplicitOracle::system_matrix(const Simplex& tau, double* m, double* domain_values) {
-  const int n = k_ + 1;
-  std::int32_t v[kMaxDimension];
-  for (int j = 0; j < n; ++j) {
-    tau.vertex(j, v);
-    const double* val = values_at(v);
-    m[j * n] = 1.0;
-    for (int i = 0; i < k_; ++i) m[j * n + 1 + i] = val[i];
-    if (domain_ && domain_values) domain_values[j] = val[k_];
-  }
+  with_oracle_dimension(d_, [&](auto fixed_d) {
+    constexpr int D = decltype(fixed_d)::value;
+    const int n = k_ + 1, d = D ? D : d_;
+    std::int32_t v[kMaxDimension];
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < d; ++i) v[i] = tau.vertex_coordinate(j, i);
+      const double* val = values_at<D>(v);
+      m[j * n] = 1.0;
+      for (int i = 0; i < k_; ++i) m[j * n + 1 + i] = val[i];
+      if (domain_ && domain_values) domain_values[j] = val[k_];
+    }
+  });
 }
 
 Intersection ImplicitOracle::intersect(const Simplex& tau, double* point) {
@@ -203,9 +235,12 @@ Intersection ImplicitOracle::intersect(const Simplex& tau, double* point) {
   Intersection r{true, -1.0};
   double xs[32 * kMaxDimension];
   triangulation_.vertex_coordinates(tau, xs);
-  for (int i = 0; i < d_; ++i) point[i] = 0;
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < d_; ++i) point[i] += lambda[j] * xs[j * d_ + i];
+  with_oracle_dimension(d_, [&](auto fixed_d) {
+    const int d = decltype(fixed_d)::value ? decltype(fixed_d)::value : d_;
+    for (int i = 0; i < d; ++i) point[i] = 0;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < d; ++i) point[i] += lambda[j] * xs[j * d + i];
+  });
   if (domain_) {
     r.domain = 0;
     for (int j = 0; j < n; ++j) r.domain += lambda[j] * dval[j];
@@ -275,11 +310,16 @@ bool ImplicitOracle::take_kept_factors(const Simplex& tau) {
 // values_at(v)'s reads: its slot of the recent vertices, and its slot in the big table.
 void ImplicitOracle::prefetch_pivot(const std::int32_t* v) {
   if (!cache_enabled_) return;
-  const std::size_t slot = front_slot(v);
-  __builtin_prefetch(front_keys_.data() + slot * d_);
+  with_oracle_dimension(d_, [&](auto fixed_d) { prefetch_pivot_d<decltype(fixed_d)::value>(v); });
+}
+
+template <int D>
+void ImplicitOracle::prefetch_pivot_d(const std::int32_t* v) {
+  const std::size_t slot = front_slot<D>(v);
+  __builtin_prefetch(front_keys_.data() + slot * (D ? D : d_));
   __builtin_prefetch(front_values_.data() + slot * stride_);
-  if (front_holds(slot, v)) return;  // met lately, as a rule: no hash, no slot of the big table to fetch
-  const std::uint64_t h = hash_words(reinterpret_cast<const std::uint32_t*>(v), d_);
+  if (front_holds<D>(slot, v)) return;  // met lately, as a rule: no hash, no slot of the big table to fetch
+  const std::uint64_t h = hash_words(reinterpret_cast<const std::uint32_t*>(v), D ? D : d_);
   if (shared_)
     shared_->prefetch(h);
   else if (cache_.indexed())
@@ -311,14 +351,21 @@ bool ImplicitOracle::pivot_enter(const Simplex& tau) {
 }
 
 int ImplicitOracle::pivot_exit(const std::int32_t* v) {
-  const int n = k_ + 1;
-  const double* val = values_at(v);
+  const double* val;
+  with_oracle_dimension(d_, [&](auto fixed_d) { val = values_at<decltype(fixed_d)::value>(v); });
   // k = 1, exact: an edge is transverse iff exactly one end has F > 0 (lexicographic_solve), so
   // the other transverse edge of the triangle joins v to the end of τ whose sign differs from v's.
-  if (n == 2) return (val[0] > 0) == (pivot_lambda_[0] > 0) ? 0 : 1;
+  if (k_ == 1) return (val[0] > 0) == (pivot_lambda_[0] > 0) ? 0 : 1;
+  return with_small_size(k_ + 1, [&]<int N>() { return pivot_exit_n<N>(val); });
+}
+
+// pivot_exit for n = N (N = 0: n read at run time), F(v) = val: loops of constant length, unrolled.
+template <int N>
+int ImplicitOracle::pivot_exit_n(const double* val) {
+  const int n = N ? N : k_ + 1;
   double a[SmallLu::kMaxN], w[SmallLu::kMaxN];
   a[0] = 1.0;
-  for (int i = 0; i < k_; ++i) a[1 + i] = val[i];
+  for (int i = 1; i < n; ++i) a[i] = val[i - 1];
   pivot_lu_.solve(a, w);
   // The least ratio λ_j / w_j over w_j > 0, then the j that reach it. The signs of w and the order
   // of the ratios are as good as random: minima and masks, not branches.
@@ -332,12 +379,17 @@ int ImplicitOracle::pivot_exit(const std::int32_t* v) {
   std::uint32_t tied = 0;
   for (int j = 0; j < n; ++j) tied |= static_cast<std::uint32_t>((w[j] > 0) & (ratio[j] == best)) << j;
   if (tied == 0) return -1;
-  // Ties (a vertex of τ on M makes λ_τ = e_j, and every ratio but one 0): the transversality rule
-  // follows M̂ perturbed to F̂ = (ε, ε², …), where λ_τ(ε) = Σ_c ε^c·(column c of M(τ)⁻¹), so the
-  // ratio test compares the rows of M(τ)⁻¹ divided by w_j lexicographically (the lexicographic
-  // pivoting rule of PL continuation). Ties are exact equalities (a tiny λ_j that is not 0 decides
-  // by itself, and blurring ties with a tolerance made more guesses wrong). Only a guess:
-  // intersect() checks it.
+  return (tied & (tied - 1)) == 0 ? std::countr_zero(tied) : pivot_exit_tie(tied, w);
+}
+
+// Ties (a vertex of τ on M makes λ_τ = e_j, and every ratio but one 0): the transversality rule
+// follows M̂ perturbed to F̂ = (ε, ε², …), where λ_τ(ε) = Σ_c ε^c·(column c of M(τ)⁻¹), so the
+// ratio test compares the rows of M(τ)⁻¹ divided by w_j lexicographically (the lexicographic
+// pivoting rule of PL continuation). Ties are exact equalities (a tiny λ_j that is not 0 decides
+// by itself, and blurring ties with a tolerance made more guesses wrong). Only a guess:
+// intersect() checks it.
+int ImplicitOracle::pivot_exit_tie(std::uint32_t tied, const double* w) {
+  const int n = k_ + 1;
   for (int c = 1; c < n && (tied & (tied - 1)) != 0; ++c) {
     double low = std::numeric_limits<double>::infinity();
     for (int j = 0; j < n; ++j)

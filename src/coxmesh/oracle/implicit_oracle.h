@@ -63,7 +63,15 @@ class ImplicitOracle final : public IntersectionOracle {
   }
 
  private:
+  // The hot paths with d fixed at compile time for the common d (D = d), else D = 0 (d_ read at
+  // run time): the loops over a vertex's coordinates unroll (util/fixed_dimension.h).
+  template <int D>
   const double* values_at(const std::int32_t* v);  // F (and D) at a lattice vertex
+  template <int D>
+  void prefetch_pivot_d(const std::int32_t* v);
+  template <int N>
+  int pivot_exit_n(const double* val);
+  int pivot_exit_tie(std::uint32_t tied, const double* w);
   void evaluate(const std::int32_t* v, double* out);
   void system_matrix(const Simplex& tau, double* m, double* domain_values);
   std::string not_finite_message(const std::int32_t* v, int i, double value) const;
@@ -74,7 +82,9 @@ class ImplicitOracle final : public IntersectionOracle {
   std::shared_ptr<SharedVertexValues> shared_;
   static constexpr int kFrontBits = 14;
   static constexpr std::size_t kFrontSlots = std::size_t{1} << kFrontBits;  // recent vertices, direct-mapped
+  template <int D>
   std::size_t front_slot(const std::int32_t* v) const;
+  template <int D>
   bool front_holds(std::size_t slot, const std::int32_t* v) const;  // v's values are in its slot
   std::vector<std::int32_t> front_keys_;
   std::vector<double> front_values_;

@@ -321,6 +321,36 @@ bool vertex_on_manifold(int n, const double* m, int j, double* lambda) {
   return true;
 }
 
+constexpr int kRejected = -2, kNoVertexOnManifold = -1;
+
+// The exact tests of lexicographic_solve before any solve, for n = N (N = 0: n at run time; loops
+// of constant length unroll): kRejected, or the column of the one vertex exactly on M, or
+// kNoVertexOnManifold.
+template <int N>
+int screen(int n_runtime, const double* m) {
+  const int n = N ? N : n_runtime;
+  // Exact quick rejection: if some F_i is > 0 at every vertex (or < 0 at every vertex), then
+  // Σ λ_j F_i(v_j) = ε^i has no solution with λ ≥ 0, Σ λ = 1 for small ε > 0.
+  for (int i = 1; i < n; ++i) {
+    bool all_pos = true, all_neg = true;
+    for (int j = 0; j < n; ++j) {
+      all_pos &= m[j * n + i] > 0;
+      all_neg &= m[j * n + i] < 0;
+    }
+    if (all_pos || all_neg) return kRejected;
+  }
+  // Vertices exactly on M: two make M singular (two columns e_0); one is decided on the smaller system.
+  int on_manifold = kNoVertexOnManifold;
+  for (int c = 0; c < n; ++c) {
+    bool zero = true;
+    for (int r = 1; r < n; ++r) zero &= m[c * n + r] == 0;
+    if (!zero) continue;
+    if (on_manifold >= 0) return kRejected;
+    on_manifold = c;
+  }
+  return on_manifold;
+}
+
 }  // namespace
 
 bool lexicographic_solve(int n, const double* m, double* lambda, SmallLu* lu, bool* factored) {
@@ -334,25 +364,8 @@ bool lexicographic_solve(int n, const double* m, double* lambda, SmallLu* lu, bo
     lambda[1] = -f0 / (f1 - f0);
     return true;
   }
-  // Exact quick rejection: if some F_i is > 0 at every vertex (or < 0 at every vertex), then
-  // Σ λ_j F_i(v_j) = ε^i has no solution with λ ≥ 0, Σ λ = 1 for small ε > 0.
-  for (int i = 1; i < n; ++i) {
-    bool all_pos = true, all_neg = true;
-    for (int j = 0; j < n; ++j) {
-      all_pos &= m[j * n + i] > 0;
-      all_neg &= m[j * n + i] < 0;
-    }
-    if (all_pos || all_neg) return false;
-  }
-  // Vertices exactly on M: two make M singular (two columns e_0); one is decided on the smaller system.
-  int on_manifold = -1;
-  for (int c = 0; c < n; ++c) {
-    bool zero = true;
-    for (int r = 1; r < n && zero; ++r) zero = m[c * n + r] == 0;
-    if (!zero) continue;
-    if (on_manifold >= 0) return false;
-    on_manifold = c;
-  }
+  const int on_manifold = with_small_size(n, [&]<int N>() { return screen<N>(n, m); });
+  if (on_manifold == kRejected) return false;
   if (on_manifold >= 0) return vertex_on_manifold(n, m, on_manifold, lambda);
   if (lu) return lexicographically_positive_inverse(n, m, lambda, *lu, factored);
   SmallLu own;

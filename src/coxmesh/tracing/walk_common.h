@@ -84,15 +84,41 @@ struct PendingCofacet {
   std::uint64_t hash = 0;
 };
 
+// The vertex w of τ's arrival cofacet not in τ, decoded once per τ: per cofacet, comparing its new
+// vertex with w costs less than encoding it (cofacet_code).
+class ArrivalVertex {
+ public:
+  ArrivalVertex(const std::uint32_t* tau_key, std::uint64_t arrival, int d) : d_(d), none_(arrival == kNoCofacet) {
+    if (none_) return;
+    for (int i = 0; i < d; ++i)
+      w_[i] = static_cast<std::int32_t>(tau_key[i]) + static_cast<std::int32_t>(arrival >> (2 * i) & 3) - 1;
+  }
+  bool is(const std::int32_t* v) const {
+    if (none_) return false;
+    std::int32_t diff = 0;
+    for (int i = 0; i < d_; ++i) diff |= v[i] ^ w_[i];
+    return diff == 0;
+  }
+
+ private:
+  int d_;
+  bool none_;
+  std::int32_t w_[kMaxDimension];
+};
+
 // First step: false when μ is τ's arrival (see other_transverse_facet).
-inline bool take_cofacet(IntersectionOracle& oracle, bool pivots, const Simplex& tau, const std::uint32_t* tau_key,
-                         std::uint64_t arrival, const Simplex& mu, PendingCofacet& p) {
+inline bool take_cofacet(IntersectionOracle& oracle, bool pivots, const Simplex& tau, const ArrivalVertex& arrival,
+                         const Simplex& mu, PendingCofacet& p) {
   p.entry = extra_vertex_index(tau, mu);
   mu.vertex(p.entry, p.v);
-  if (arrival != kNoCofacet && cofacet_code(p.v, tau_key, tau.d) == arrival) return false;
+  if (arrival.is(p.v)) return false;
   p.mu = mu;
   if (pivots) oracle.prefetch_pivot(p.v);
   return true;
+}
+inline bool take_cofacet(IntersectionOracle& oracle, bool pivots, const Simplex& tau, const std::uint32_t* tau_key,
+                         std::uint64_t arrival, const Simplex& mu, PendingCofacet& p) {
+  return take_cofacet(oracle, pivots, tau, ArrivalVertex(tau_key, arrival, tau.d), mu, p);
 }
 
 // Second step: false when the oracle makes no guess.

@@ -47,12 +47,10 @@ void SequentialWalk::walk() {
     tau = result_.simplices.simplex(head_, d_);
     const bool pivots = oracle_.pivot_enter(tau);
     cofacets.reset(tau, k_ + 1);
-    // (τ's key is read per cofacet: classify appends to S, which may move the keys)
+    const ArrivalVertex arrival(result_.simplices.key(head_), arrivals_[head_], d_);
     pipeline.run(
         cofacets,
-        [&](const Simplex& mu, PendingCofacet& p) {
-          return take_cofacet(oracle_, pivots, tau, result_.simplices.key(head_), arrivals_[head_], mu, p);
-        },
+        [&](const Simplex& mu, PendingCofacet& p) { return take_cofacet(oracle_, pivots, tau, arrival, mu, p); },
         [&](PendingCofacet& p) {
           if (guess_other_facet(oracle_, pivots, p)) result_.simplices.prefetch(p.hash);  // (its slot in S)
         },
