@@ -82,7 +82,7 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
     UninitializedHugeVector<std::uint32_t> found;  // per cofacet found, which of them
     std::vector<std::uint64_t> seen;               // a small hash table of them (enumerate)
     std::uint16_t use = 0;
-    std::size_t offset = 0;                        // of its incidences
+    std::size_t offset = 0;  // of its incidences
   };
   CellLevel level;
   level.simplices = PackedKeyIndex(words);
