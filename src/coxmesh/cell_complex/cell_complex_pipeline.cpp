@@ -68,7 +68,7 @@ void set_facets(CellLevel& level, std::span<const std::uint32_t> incidences, std
 CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& pool) {
   // Batches of up to 8192 cells, and at most 1/32 of the level: the three sets of buffers stay a
   // small part of the memory of the complex.
-  constexpr std::uint32_t kChunk = 256, kMaxChunksPerBatch = 32;
+  constexpr std::uint32_t kChunk = 1024, kMaxChunksPerBatch = 8;
   const std::uint32_t chunks_per_batch = std::clamp<std::uint32_t>(prev.size() / (32 * kChunk), 1, kMaxChunksPerBatch);
   const std::uint32_t batch_cells = kChunk * chunks_per_batch;
   const int words = packed_words(d);
