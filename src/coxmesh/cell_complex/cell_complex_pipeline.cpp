@@ -59,8 +59,8 @@ void set_facets(CellLevel& level, std::span<const std::uint32_t> incidences, std
 }  // namespace
 
 // next_level_plain (cell_complex.cpp) in a pipeline. The cells of level j − 1 go in batches of
-// chunks, in three stages: the cofaces of each chunk are enumerated, packed, hashed and kept once each (a task per
-// chunk); the batch is numbered, inserting its cofaces into the index in order (one task: the only
+// chunks, in three stages: the cofaces of each chunk are enumerated, packed, hashed and kept once
+// each (a task per chunk); the batch is numbered, inserting its cofaces into the index in order (one task: the only
 // serial step); its incidences are written out (a task per chunk). A parallel round numbers batch b
 // while it enumerates batch b + 1 and writes out batch b − 1, with three sets of buffers; the
 // numbering starts at once, on the core that enumerated the batch. The result is the same for any
