@@ -59,8 +59,8 @@ void set_facets(CellLevel& level, std::span<const std::uint32_t> incidences, std
 }  // namespace
 
 // next_level_plain (cell_complex.cpp) in a pipeline. The cells of level j − 1 go in batches of
-// chunks, in three stages: the cofaces of each chunk are enumerated, packed, hashed and kept once
-// each (a task per chunk); the batch is numbered, inserting its cofaces into the index in order (one task: the only
+// chunks, in three stages: the cofaces of each chunk are enumerated, packed and hashed (a task per
+// chunk); the batch is numbered, inserting its cofaces into the index in order (one task: the only
 // serial step); its incidences are written out (a task per chunk). A parallel round numbers batch b
 // while it enumerates batch b + 1 and writes out batch b − 1, with three sets of buffers; the
 // numbering starts at once, on the core that enumerated the batch. The result is the same for any
@@ -68,7 +68,7 @@ void set_facets(CellLevel& level, std::span<const std::uint32_t> incidences, std
 CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& pool) {
   // Batches of up to 8192 cells, and at most 1/32 of the level: the three sets of buffers stay a
   // small part of the memory of the complex.
-  constexpr std::uint32_t kChunk = 1024, kMaxChunksPerBatch = 8;
+  constexpr std::uint32_t kChunk = 256, kMaxChunksPerBatch = 32;
   const std::uint32_t chunks_per_batch = std::clamp<std::uint32_t>(prev.size() / (32 * kChunk), 1, kMaxChunksPerBatch);
   const std::uint32_t batch_cells = kChunk * chunks_per_batch;
   const int words = packed_words(d);
@@ -77,11 +77,9 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
   // (padded: neighbouring chunks are filled by different workers; the arrays grow per cell and are
   // written in full after each resize, so they are not zeroed first: a memset call per cell)
   struct alignas(64) Chunk {
-    UninitializedHugeVector<std::uint32_t> keys, ids;  // its distinct cofacets, in order of first finding
+    UninitializedHugeVector<std::uint32_t> keys, ids;
     UninitializedHugeVector<std::uint64_t> hashes;
-    UninitializedHugeVector<std::uint32_t> found;  // per cofacet found, which of them
-    std::size_t occurrences = 0, distinct = 0;     // (the arrays only grow: resizing costs a loop)
-    std::size_t offset = 0;                        // of its incidences
+    std::size_t offset = 0;  // of its incidences
   };
   CellLevel level;
   level.simplices = PackedKeyIndex(words);
@@ -89,15 +87,6 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
   IndexArray incidences;                      // the cells found from each cell of prev, in discovery order
   IndexArray counts(prev.size());             // how many (its cofacets), per cell of prev
   std::vector<Chunk> buffers[3];
-  // Per worker, a small hash table of the cofacets its chunk found (reused chunk after chunk: it
-  // stays in the core's caches): slots of a 16-bit use number (those of earlier uses read as empty:
-  // no clearing per chunk), 16 bits of the hash (a cheap first comparison) and an index, homed by the
-  // hash's low bits (the key index homes by its top bits).
-  struct alignas(64) Seen {
-    std::vector<std::uint64_t> slots;
-    std::uint16_t use = 0;
-  };
-  std::vector<Seen> seen_by_worker(static_cast<std::size_t>(pool.size()));
   for (auto& b : buffers) b.resize(chunks_per_batch);
   const std::int64_t batches = (prev.size() + batch_cells - 1) / batch_cells;
   const auto chunks_of = [&](std::int64_t batch) -> std::size_t {
@@ -105,87 +94,52 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
     return (std::min<std::uint64_t>(prev.size(), (batch + 1) * batch_cells) - batch * batch_cells + kChunk - 1) /
            kChunk;
   };
-  // A cell of level j is found from each of its facets, mostly from cells of prev near each other:
-  // the chunk keeps each cofacet once (the first time it is found), and the numbering inserts only
-  // those. The ids are those of inserting every occurrence in order: a repeat gets no new id.
-  const auto enumerate = [&](std::int64_t batch, std::size_t t, int worker) {
+  const auto enumerate = [&](std::int64_t batch, std::size_t t) {
     Chunk& out = buffers[batch % 3][t];
-    Seen& table = seen_by_worker[static_cast<std::size_t>(worker)];
+    out.keys.clear(), out.hashes.clear();
     const std::uint32_t a = static_cast<std::uint32_t>(batch * batch_cells + t * kChunk);
     const std::uint32_t b = std::min(prev.size(), a + kChunk);
-    // (d fixed at compile time for the common d, once per chunk: the loops over d and the words unroll)
-    with_fixed_dimension<2, 3, 4, 6, 9>(d, [&](auto fixed_d) {
+    // (d fixed at compile time for small d, once per chunk: the loops over d and the words unroll)
+    with_fixed_dimension<2, 3, 4>(d, [&](auto fixed_d) {
       constexpr int kD = decltype(fixed_d)::value;
       const int key_words = kD != 0 ? packed_words(kD) : words;
-      std::size_t total = 0;
-      for (std::uint32_t c = a; c < b; ++c)
-        total += counts[c] = static_cast<std::uint32_t>(PackedCofacets<kD>(prev.simplices.key(c), d).count());
-      const auto grow = [](auto& v, std::size_t n) {
-        if (v.size() < n) v.resize(n);
-      };
-      grow(out.found, total), grow(out.keys, total * key_words), grow(out.hashes, total), grow(out.ids, total);
-      if (table.slots.size() < 2 * total || ++table.use == 0) {  // (load ≤ 1/2)
-        std::size_t capacity = std::max<std::size_t>(table.slots.size(), 64);
-        while (capacity < 2 * total) capacity *= 2;
-        table.slots.assign(capacity, 0);
-        table.use = 1;
-      }
-      const std::size_t mask = table.slots.size() - 1;
-      const std::uint64_t use = std::uint64_t{table.use} << 16;
-      std::uint64_t* seen = table.slots.data();
-      std::uint32_t *found = out.found.data(), *keys = out.keys.data();
-      std::uint64_t* hashes = out.hashes.data();
-      std::uint32_t distinct = 0;
-      for (std::uint32_t c = a; c < b; ++c)  // (straight from the packed keys)
-        PackedCofacets<kD>(prev.simplices.key(c), d).for_each([&](const std::uint32_t* nu, std::uint64_t hash) {
-          const std::uint64_t tag = use | (hash >> 48);
-          for (std::size_t s = hash & mask;; s = (s + 1) & mask) {
-            const std::uint64_t e = seen[s];
-            if (e >> 48 != use >> 16) {
-              seen[s] = tag << 32 | distinct;
-              std::uint32_t* key = keys + std::size_t{distinct} * key_words;
-              // (four words at a time: a loop of single words was an eighth of the enumeration's samples)
-              int i = 0;
-              for (; i + 4 <= key_words; i += 4) std::memcpy(key + i, nu + i, 4 * sizeof(std::uint32_t));
-              for (; i < key_words; ++i) key[i] = nu[i];
-              hashes[distinct] = hash;
-              *found++ = distinct++;
-              return;
-            }
-            if (e >> 32 == tag) {
-              const std::uint32_t index = static_cast<std::uint32_t>(e);
-              const std::uint32_t* key = keys + std::size_t{index} * key_words;
-              std::uint32_t diff = 0;
-              for (int i = 0; i < key_words; ++i) diff |= key[i] ^ nu[i];
-              if (diff == 0) {
-                *found++ = index;
-                return;
-              }
-            }
-          }
+      for (std::uint32_t c = a; c < b; ++c) {  // (straight from the packed keys, into arrays grown once per cell)
+        const PackedCofacets<kD> cofacets(prev.simplices.key(c), d);
+        const std::size_t first = out.hashes.size(), count = cofacets.count();
+        out.keys.resize((first + count) * key_words), out.hashes.resize(first + count);
+        counts[c] = static_cast<std::uint32_t>(count);
+        std::uint32_t* keys = out.keys.data() + first * key_words;
+        std::uint64_t* hashes = out.hashes.data() + first;
+        cofacets.for_each([&](const std::uint32_t* nu, std::uint64_t hash) {
+          // (four words at a time: a loop of single words was an eighth of the enumeration's samples)
+          int i = 0;
+          for (; i + 4 <= key_words; i += 4) std::memcpy(keys + i, nu + i, 4 * sizeof(std::uint32_t));
+          for (; i < key_words; ++i) keys[i] = nu[i];
+          keys += key_words;
+          *hashes++ = hash;
         });
-      out.occurrences = total, out.distinct = distinct;
+      }
     });
+    out.ids.resize(out.hashes.size());
   };
   std::vector<KeyRun> runs;
   const auto number = [&](std::int64_t batch) {
     runs.clear();
     for (std::size_t t = 0; t < chunks_of(batch); ++t) {
       Chunk& c = buffers[batch % 3][t];
-      runs.push_back({c.keys.data(), c.hashes.data(), c.distinct, c.ids.data()});
+      runs.push_back({c.keys.data(), c.hashes.data(), c.hashes.size(), c.ids.data()});
     }
     level.simplices.insert_runs(runs);
   };
   const auto write_out = [&](std::int64_t batch, std::size_t t) {
     const Chunk& in = buffers[batch % 3][t];
-    for (std::size_t r = 0; r < in.occurrences; ++r)
-      incidences[in.offset + r] = in.ids[in.found[r]] & ~PackedKeyIndex::kNewBit;
+    for (std::size_t r = 0; r < in.ids.size(); ++r) incidences[in.offset + r] = in.ids[r] & ~PackedKeyIndex::kNewBit;
   };
   for (std::int64_t round = 0; round <= batches + 1; ++round) {
     const std::int64_t numbered = round - 1, written = round - 2;
     if (written == 0) {  // room for the whole level at batch 0's rate: no copies as it grows
       std::size_t occurrences = 0;
-      for (std::size_t t = 0; t < chunks_of(0); ++t) occurrences += buffers[0][t].occurrences;
+      for (std::size_t t = 0; t < chunks_of(0); ++t) occurrences += buffers[0][t].ids.size();
       const std::size_t cells0 = std::min(prev.size(), batch_cells);
       incidences.reserve(occurrences * prev.size() / cells0 * 9 / 8);
       // (the index at batch 0's rate too: it comes out slightly above the level's size)
@@ -193,17 +147,15 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
       if (batches > 2) level.simplices.reserve(std::min<std::size_t>(cells, PackedKeyIndex::kMaxEntries));
     }
     if (numbered == 0) {  // room for batch 0's keys, each new at worst
-      std::size_t distinct = 0;
-      for (std::size_t t = 0; t < chunks_of(0); ++t) distinct += buffers[0][t].distinct;
-      level.simplices.reserve_table(std::min<std::size_t>(distinct, PackedKeyIndex::kMaxEntries));
+      std::size_t occurrences = 0;
+      for (std::size_t t = 0; t < chunks_of(0); ++t) occurrences += buffers[0][t].ids.size();
+      level.simplices.reserve_table(std::min<std::size_t>(occurrences, PackedKeyIndex::kMaxEntries));
     }
-    std::size_t end = incidences.size();
     for (std::size_t t = 0; t < chunks_of(written); ++t) {
       Chunk& c = buffers[written % 3][t];
-      c.offset = end;
-      end += c.occurrences;
+      c.offset = incidences.size();
+      incidences.resize(incidences.size() + c.ids.size());
     }
-    incidences.resize(end);
     // One lane per worker: the numbering lane numbers, then helps with the chunks. Lanes are taken
     // in order, lane 0 by the calling thread as a rule, so with the numbering lane turning round by
     // round a batch is mostly numbered by the worker that enumerated it: its keys are in that
@@ -212,10 +164,10 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
     const std::size_t lanes = static_cast<std::size_t>(pool.size());
     const std::size_t numbering_lane = static_cast<std::size_t>(round) % lanes;
     std::atomic<std::size_t> next_chunk{0};
-    pool.run(lanes, [&](std::size_t lane, int worker) {
+    pool.run(lanes, [&](std::size_t lane, int) {
       if (lane == numbering_lane && chunks_of(numbered) > 0) number(numbered);
       for (std::size_t t; (t = next_chunk.fetch_add(1)) < n_chunks;)
-        t < n_enumerate ? enumerate(round, t, worker) : write_out(written, t - n_enumerate);
+        t < n_enumerate ? enumerate(round, t) : write_out(written, t - n_enumerate);
     });
   }
   set_facets(level, incidences, counts, pool);
