@@ -83,14 +83,25 @@ void add_polyhedron(Grid<Index>& g, std::uint64_t domains, const PolyhedronCurso
                     const double* p3) {
   const auto corners = cell.corners();
   const auto faces = cell.faces();
-  // The centroids as sums of quotients, x and y in one packed division (the quotients are the
-  // same, bit for bit, as one at a time).
+  // The centroids as sums of quotients, x and y in one packed division and the z of two corners in
+  // another (the quotients are the same, bit for bit, as one at a time; each sum keeps its order).
   const double n = static_cast<double>(corners.size());
+  const Pair nn{n, n};
   Pair centre_xy{0, 0};
   double centre_z = 0;
-  for (std::uint32_t v : corners) {
-    const double* p = p3 + 3 * std::size_t{v};
-    centre_xy += Pair{p[0], p[1]} / Pair{n, n};
+  std::size_t i = 0;
+  for (; i + 1 < corners.size(); i += 2) {
+    const double* p = p3 + 3 * std::size_t{corners[i]};
+    const double* q = p3 + 3 * std::size_t{corners[i + 1]};
+    const Pair z = Pair{p[2], q[2]} / nn;
+    centre_xy += Pair{p[0], p[1]} / nn;
+    centre_xy += Pair{q[0], q[1]} / nn;
+    centre_z += z[0];
+    centre_z += z[1];
+  }
+  if (i < corners.size()) {
+    const double* p = p3 + 3 * std::size_t{corners[i]};
+    centre_xy += Pair{p[0], p[1]} / nn;
     centre_z += p[2] / n;
   }
   g.add(kPolyhedron, 3, domains, corners);
@@ -105,9 +116,6 @@ void add_polyhedron(Grid<Index>& g, std::uint64_t domains, const PolyhedronCurso
     // (the divisions as they are: a projected cell can be flat, and its faces' orientation then
     // hangs on the last bit, which the file must keep)
     std::array<double, 3> normal{0, 0, 0};
-    const double kd = static_cast<double>(k);
-    Pair mid_xy{0, 0};
-    double mid_z = 0;
     // (each corner read once: the end b of one side is the start a of the next)
     const double* first = p3 + 3 * std::size_t{cycle[0]};
     double a[3] = {first[0], first[1], first[2]};
@@ -117,21 +125,38 @@ void add_polyhedron(Grid<Index>& g, std::uint64_t domains, const PolyhedronCurso
       normal[0] += (a[1] - b[1]) * (a[2] + b[2]);
       normal[1] += (a[2] - b[2]) * (a[0] + b[0]);
       normal[2] += (a[0] - b[0]) * (a[1] + b[1]);
-      mid_xy += Pair{a[0], a[1]} / Pair{kd, kd};
-      mid_z += a[2] / kd;
       a[0] = b[0], a[1] = b[1], a[2] = b[2];
+    }
+    // The face's centroid as the cell's: the z of two corners in one division.
+    const double kd = static_cast<double>(k);
+    const Pair kk{kd, kd};
+    Pair mid_xy{0, 0};
+    double mid_z = 0;
+    std::size_t i = 0;
+    for (; i + 1 < k; i += 2) {
+      const double* p = p3 + 3 * std::size_t{cycle[i]};
+      const double* q = p3 + 3 * std::size_t{cycle[i + 1]};
+      const Pair z = Pair{p[2], q[2]} / kk;
+      mid_xy += Pair{p[0], p[1]} / kk;
+      mid_xy += Pair{q[0], q[1]} / kk;
+      mid_z += z[0];
+      mid_z += z[1];
+    }
+    if (i < k) {
+      const double* p = p3 + 3 * std::size_t{cycle[i]};
+      mid_xy += Pair{p[0], p[1]} / kk;
+      mid_z += p[2] / kd;
     }
     double dot = 0;  // (summed in the order x, y, z)
     dot += normal[0] * (mid_xy[0] - centre_xy[0]);
     dot += normal[1] * (mid_xy[1] - centre_xy[1]);
     dot += normal[2] * (mid_z - centre_z);
+    // Reversed when dot < 0: c0, c(k−1), …, c1, corner j read from k − j instead of j. (An index,
+    // not a branch: the sign follows the geometry, and a branch on it is mispredicted half the time.)
+    const std::size_t reversed = -static_cast<std::size_t>(dot < 0);
     *out++ = static_cast<Index>(k);
-    if (dot < 0) {  // (reversed: c0, c(k−1), …, c1)
-      *out++ = static_cast<Index>(cycle[0]);
-      for (std::size_t i = k - 1; i >= 1; --i) *out++ = static_cast<Index>(cycle[i]);
-    } else {
-      for (std::uint32_t v : cycle) *out++ = static_cast<Index>(v);
-    }
+    *out++ = static_cast<Index>(cycle[0]);
+    for (std::size_t j = 1; j < k; ++j) *out++ = static_cast<Index>(cycle[j + (reversed & (k - 2 * j))]);
   }
   g.faceoffsets.back() = static_cast<Index>(g.faces.size());
 }
@@ -191,6 +216,21 @@ std::size_t face_stream_bound(const CellLevel& level, CellKind kind, const Ragge
       n += 1 + polygons.offsets[n2 + level.boundary_facet[c] + 1] - polygons.offsets[n2 + level.boundary_facet[c]];
   }
   return n;
+}
+
+// Polygons of at most kShortCycle corners (as a rule they have 3 to 6): the face stream is bounded
+// from the cells' facet counts alone, without reading every face's length, and the room it
+// reserves beyond the stream is address space only, never written.
+constexpr std::uint32_t kShortCycle = 8;
+
+// A bound on the length of the face stream of 3-cells begin .. end − 1 of one kind when no polygon
+// has more than `longest` corners.
+std::size_t short_face_stream_bound(const CellLevel& level, CellKind kind, std::uint32_t longest, std::uint32_t begin,
+                                    std::uint32_t end) {
+  const bool closing = kind == CellKind::interior && !level.boundary_facet.empty();  // (a boundary face too)
+  const std::size_t cells = end - begin;
+  const std::size_t faces = level.facet_offsets[end] - level.facet_offsets[begin] + (closing ? cells : 0);
+  return cells + faces * (1 + std::size_t{longest});
 }
 
 // Whether every number of the connectivity, offsets and faces arrays fits in Int32: a bound from
@@ -310,6 +350,9 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
       for (std::size_t i = 0; i < ranges.size(); ++i) cells3.emplace_back().ids = ids;
       skipped.assign(ranges.size(), 0);
       std::vector<PolyhedronCursor> cursors;
+      std::uint32_t longest = 0;
+      for (std::uint32_t c = 0; c < polygons.size(); ++c)
+        longest = std::max(longest, polygons.offsets[c + 1] - polygons.offsets[c]);
       const auto add_range = [&](std::size_t r, int worker) {
         const auto [kind, begin, end] = ranges[r];
         Grid<Index>& piece = cells3[r];
@@ -320,7 +363,8 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
         piece.is_boundary.reserve(cells), piece.domains.reserve(cells), piece.faceoffsets.reserve(cells);
         if (ids) piece.global.reserve(cells);
         if (!simplices) {  // (a corner of a closed polyhedron is in 3 faces or more: ≤ stream / 3 corners)
-          const std::size_t stream = face_stream_bound(level, kind, polygons, n2, begin, end);
+          const std::size_t stream = longest <= kShortCycle ? short_face_stream_bound(level, kind, longest, begin, end)
+                                                            : face_stream_bound(level, kind, polygons, n2, begin, end);
           piece.faces.reserve(stream);
           piece.connectivity.reserve(stream / 3);
         }
