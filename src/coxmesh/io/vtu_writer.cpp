@@ -28,17 +28,20 @@ namespace {
 constexpr std::uint8_t kVertex = 1, kLine = 3, kTriangle = 5, kPolygon = 7, kTetrahedron = 10, kPolyhedron = 42;
 
 // The pages of a big block (from HugePageAllocator: 2 MiB-aligned, whole 2 MiB pages) that its
-// vector's end is about to reach, written 2 MiB at a time in one call, up front: writing them one by
-// one cost a page fault each, whose entry and exit cost more than the kernel's zeroing (the face
-// stream of T³: 23,000 of them). `ready`: the bytes written so far.
+// vector's end is about to reach, written kFaultInChunk bytes at a time in one call, up front:
+// written one by one they cost a page fault each (the face stream of T³: 23,000 of them). A chunk
+// of 256 KiB keeps what is faulted in beyond the end small in each of the pieces the workers fill.
+// `ready`: the bytes written so far.
+constexpr std::size_t kFaultInChunk = std::size_t{256} << 10;
+
 template <class T>
 void fault_in_ahead(const UninitializedHugeVector<T>& v, std::size_t& ready) {
 #if defined(MADV_POPULATE_WRITE) && !defined(__SANITIZE_ADDRESS__)
   using Allocator = HugePageAllocator<T>;
   const std::size_t held = v.capacity() * sizeof(T);
   // (a small block: operator new's; half a chunk ahead, so that the array's end never waits)
-  if (v.size() * sizeof(T) + Allocator::kPage / 2 < ready || held < Allocator::kPage) return;
-  const std::size_t end = std::min(ready + Allocator::kPage, Allocator::round_up(held));
+  if (v.size() * sizeof(T) + kFaultInChunk / 2 < ready || held < Allocator::kPage) return;
+  const std::size_t end = std::min(ready + kFaultInChunk, Allocator::round_up(held));
   if (end > ready) madvise(reinterpret_cast<char*>(const_cast<T*>(v.data())) + ready, end - ready, MADV_POPULATE_WRITE);
   ready = end;
 #else
@@ -105,25 +108,14 @@ void add_polyhedron(Grid<Index>& g, std::uint64_t domains, const PolyhedronCurso
                     const double* p3) {
   const auto corners = cell.corners();
   const auto faces = cell.faces();
-  // The centroids as sums of quotients, x and y in one packed division and the z of two corners in
-  // another (the quotients are the same, bit for bit, as one at a time; each sum keeps its order).
+  // The centroids as sums of quotients, x and y in one packed division (the quotients are the
+  // same, bit for bit, as one at a time).
   const double n = static_cast<double>(corners.size());
-  const Pair nn{n, n};
   Pair centre_xy{0, 0};
   double centre_z = 0;
-  std::size_t i = 0;
-  for (; i + 1 < corners.size(); i += 2) {
-    const double* p = p3 + 3 * std::size_t{corners[i]};
-    const double* q = p3 + 3 * std::size_t{corners[i + 1]};
-    const Pair z = Pair{p[2], q[2]} / nn;
-    centre_xy += Pair{p[0], p[1]} / nn;
-    centre_xy += Pair{q[0], q[1]} / nn;
-    centre_z += z[0];
-    centre_z += z[1];
-  }
-  if (i < corners.size()) {
-    const double* p = p3 + 3 * std::size_t{corners[i]};
-    centre_xy += Pair{p[0], p[1]} / nn;
+  for (std::uint32_t v : corners) {
+    const double* p = p3 + 3 * std::size_t{v};
+    centre_xy += Pair{p[0], p[1]} / Pair{n, n};
     centre_z += p[2] / n;
   }
   g.add(kPolyhedron, 3, domains, corners);
@@ -138,6 +130,9 @@ void add_polyhedron(Grid<Index>& g, std::uint64_t domains, const PolyhedronCurso
     // (the divisions as they are: a projected cell can be flat, and its faces' orientation then
     // hangs on the last bit, which the file must keep)
     std::array<double, 3> normal{0, 0, 0};
+    const double kd = static_cast<double>(k);
+    Pair mid_xy{0, 0};
+    double mid_z = 0;
     // (each corner read once: the end b of one side is the start a of the next)
     const double* first = p3 + 3 * std::size_t{cycle[0]};
     double a[3] = {first[0], first[1], first[2]};
@@ -147,27 +142,9 @@ void add_polyhedron(Grid<Index>& g, std::uint64_t domains, const PolyhedronCurso
       normal[0] += (a[1] - b[1]) * (a[2] + b[2]);
       normal[1] += (a[2] - b[2]) * (a[0] + b[0]);
       normal[2] += (a[0] - b[0]) * (a[1] + b[1]);
+      mid_xy += Pair{a[0], a[1]} / Pair{kd, kd};
+      mid_z += a[2] / kd;
       a[0] = b[0], a[1] = b[1], a[2] = b[2];
-    }
-    // The face's centroid as the cell's: the z of two corners in one division.
-    const double kd = static_cast<double>(k);
-    const Pair kk{kd, kd};
-    Pair mid_xy{0, 0};
-    double mid_z = 0;
-    std::size_t i = 0;
-    for (; i + 1 < k; i += 2) {
-      const double* p = p3 + 3 * std::size_t{cycle[i]};
-      const double* q = p3 + 3 * std::size_t{cycle[i + 1]};
-      const Pair z = Pair{p[2], q[2]} / kk;
-      mid_xy += Pair{p[0], p[1]} / kk;
-      mid_xy += Pair{q[0], q[1]} / kk;
-      mid_z += z[0];
-      mid_z += z[1];
-    }
-    if (i < k) {
-      const double* p = p3 + 3 * std::size_t{cycle[i]};
-      mid_xy += Pair{p[0], p[1]} / kk;
-      mid_z += p[2] / kd;
     }
     double dot = 0;  // (summed in the order x, y, z)
     dot += normal[0] * (mid_xy[0] - centre_xy[0]);
