@@ -1,4 +1,6 @@
 // VTK XML UnstructuredGrid writer (raw appended data); see mesh_formats.h and docs/formats.md.
+#include <sys/mman.h>
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -25,6 +27,28 @@ namespace {
 
 constexpr std::uint8_t kVertex = 1, kLine = 3, kTriangle = 5, kPolygon = 7, kTetrahedron = 10, kPolyhedron = 42;
 
+// The pages of a big block (from HugePageAllocator: 2 MiB-aligned, whole 2 MiB pages) that its
+// vector's end is about to reach, written kFaultInChunk bytes at a time in one call, up front:
+// written one by one they cost a page fault each (the face stream of T³: 23,000 of them). A chunk
+// of 256 KiB keeps what is faulted in beyond the end small in each of the pieces the workers fill.
+// `ready`: the bytes written so far.
+constexpr std::size_t kFaultInChunk = std::size_t{256} << 10;
+
+template <class T>
+void fault_in_ahead(const UninitializedHugeVector<T>& v, std::size_t& ready) {
+#if defined(MADV_POPULATE_WRITE) && !defined(__SANITIZE_ADDRESS__)
+  using Allocator = HugePageAllocator<T>;
+  const std::size_t held = v.capacity() * sizeof(T);
+  // (a small block: operator new's; half a chunk ahead, so that the array's end never waits)
+  if (v.size() * sizeof(T) + kFaultInChunk / 2 < ready || held < Allocator::kPage) return;
+  const std::size_t end = std::min(ready + kFaultInChunk, Allocator::round_up(held));
+  if (end > ready) madvise(reinterpret_cast<char*>(const_cast<T*>(v.data())) + ready, end - ready, MADV_POPULATE_WRITE);
+  ready = end;
+#else
+  (void)v, (void)ready;
+#endif
+}
+
 // The cells of the grid, built up cell by cell; Index is the type of the connectivity, offsets and
 // faces arrays (Int32 where every number fits: half the bytes to build, copy and store).
 template <class Index>
@@ -34,6 +58,7 @@ struct Grid {
   std::vector<std::uint8_t> types, dimension, is_boundary;
   std::vector<std::uint64_t> domains;  // bit i: the cell lies on D_{i+1} = 0 (a boundary cell of one domain: 1)
   bool has_polyhedra = false;
+  std::size_t connectivity_ready = 0, faces_ready = 0;  // (fault_in_ahead)
   // With global ids (a piece of a larger mesh): the id of each cell added, `source` when it is added.
   const VtuGlobalIds* ids = nullptr;
   std::vector<std::uint64_t> global;
@@ -125,15 +150,16 @@ void add_polyhedron(Grid<Index>& g, std::uint64_t domains, const PolyhedronCurso
     dot += normal[0] * (mid_xy[0] - centre_xy[0]);
     dot += normal[1] * (mid_xy[1] - centre_xy[1]);
     dot += normal[2] * (mid_z - centre_z);
+    // Reversed when dot < 0: c0, c(k−1), …, c1, corner j read from k − j instead of j. (An index,
+    // not a branch: the sign follows the geometry, and a branch on it is mispredicted half the time.)
+    const std::size_t reversed = -static_cast<std::size_t>(dot < 0);
     *out++ = static_cast<Index>(k);
-    if (dot < 0) {  // (reversed: c0, c(k−1), …, c1)
-      *out++ = static_cast<Index>(cycle[0]);
-      for (std::size_t i = k - 1; i >= 1; --i) *out++ = static_cast<Index>(cycle[i]);
-    } else {
-      for (std::uint32_t v : cycle) *out++ = static_cast<Index>(v);
-    }
+    *out++ = static_cast<Index>(cycle[0]);
+    for (std::size_t j = 1; j < k; ++j) *out++ = static_cast<Index>(cycle[j + (reversed & (k - 2 * j))]);
   }
   g.faceoffsets.back() = static_cast<Index>(g.faces.size());
+  fault_in_ahead(g.faces, g.faces_ready);
+  fault_in_ahead(g.connectivity, g.connectivity_ready);
 }
 
 // One appended-data block: UInt64 byte count, then the bytes, those of one array or of several one
@@ -191,6 +217,21 @@ std::size_t face_stream_bound(const CellLevel& level, CellKind kind, const Ragge
       n += 1 + polygons.offsets[n2 + level.boundary_facet[c] + 1] - polygons.offsets[n2 + level.boundary_facet[c]];
   }
   return n;
+}
+
+// Polygons of at most kShortCycle corners (as a rule they have 3 to 6): the face stream is bounded
+// from the cells' facet counts alone, without reading every face's length, and the room it
+// reserves beyond the stream is address space only, never written.
+constexpr std::uint32_t kShortCycle = 8;
+
+// A bound on the length of the face stream of 3-cells begin .. end − 1 of one kind when no polygon
+// has more than `longest` corners.
+std::size_t short_face_stream_bound(const CellLevel& level, CellKind kind, std::uint32_t longest, std::uint32_t begin,
+                                    std::uint32_t end) {
+  const bool closing = kind == CellKind::interior && !level.boundary_facet.empty();  // (a boundary face too)
+  const std::size_t cells = end - begin;
+  const std::size_t faces = level.facet_offsets[end] - level.facet_offsets[begin] + (closing ? cells : 0);
+  return cells + faces * (1 + std::size_t{longest});
 }
 
 // Whether every number of the connectivity, offsets and faces arrays fits in Int32: a bound from
@@ -310,6 +351,9 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
       for (std::size_t i = 0; i < ranges.size(); ++i) cells3.emplace_back().ids = ids;
       skipped.assign(ranges.size(), 0);
       std::vector<PolyhedronCursor> cursors;
+      std::uint32_t longest = 0;
+      for (std::uint32_t c = 0; c < polygons.size(); ++c)
+        longest = std::max(longest, polygons.offsets[c + 1] - polygons.offsets[c]);
       const auto add_range = [&](std::size_t r, int worker) {
         const auto [kind, begin, end] = ranges[r];
         Grid<Index>& piece = cells3[r];
@@ -320,7 +364,8 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
         piece.is_boundary.reserve(cells), piece.domains.reserve(cells), piece.faceoffsets.reserve(cells);
         if (ids) piece.global.reserve(cells);
         if (!simplices) {  // (a corner of a closed polyhedron is in 3 faces or more: ≤ stream / 3 corners)
-          const std::size_t stream = face_stream_bound(level, kind, polygons, n2, begin, end);
+          const std::size_t stream = longest <= kShortCycle ? short_face_stream_bound(level, kind, longest, begin, end)
+                                                            : face_stream_bound(level, kind, polygons, n2, begin, end);
           piece.faces.reserve(stream);
           piece.connectivity.reserve(stream / 3);
         }
