@@ -1,5 +1,7 @@
 #include "distributed.h"
 
+#include <malloc.h>
+
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -202,6 +204,18 @@ void prefer_shared_memory_on_one_node() {
   const char* local = std::getenv("OMPI_COMM_WORLD_LOCAL_SIZE");
   if (size && local && std::strcmp(size, local) == 0) setenv("OMPI_MCA_pml", "ob1", 0);
 }
+
+// A rank builds each level of its part of the complex (and of the topology's ranges) in arrays
+// and messages of tens of MB that it frees once the level is settled. glibc maps such blocks
+// afresh each time and unmaps them when freed, so each level faulted its pages in again (a rank
+// of T3 at P = 2 took 90 % of one process's page faults for half its cells). Kept in the heap
+// instead, the next level's arrays reuse them: a rank's CPU time -6 %, its peak memory +6 %.
+// (One process is left as it is: its big arrays are few, and it does not free them level by level.)
+void keep_freed_memory() {
+  constexpr int kKept = 256 << 20;
+  mallopt(M_MMAP_THRESHOLD, kKept);  // (blocks below this from the heap; glibc's own bound grows to 32 MB)
+  mallopt(M_TRIM_THRESHOLD, kKept);  // (the heap's free top given back beyond this)
+}
 #endif
 
 std::unique_ptr<Communicator> session_communicator;
@@ -218,7 +232,10 @@ MpiSession::MpiSession([[maybe_unused]] int& argc, [[maybe_unused]] char**& argv
   session_initialised = true;
   int size = 1;
   MPI_Comm_size(MPI_COMM_WORLD, &size);
-  if (size > 1) session_communicator = std::make_unique<MpiCommunicator>();
+  if (size > 1) {
+    session_communicator = std::make_unique<MpiCommunicator>();
+    keep_freed_memory();
+  }
   // Rank 0 speaks for the job (usage errors, progress, the summary): the others are silent.
   if (session_communicator && session_communicator->rank() != 0) {
     std::cout.rdbuf(nullptr);
