@@ -222,21 +222,22 @@ void DistributedWalk::add_seed(std::span<const double> seed, bool must_succeed) 
     vertices.resize(ring.size() * (d_ + 1) * d_);
     for (std::size_t i = 0; i < ring.size(); ++i)
       for (int j = 0; j <= d_; ++j) ring[i].vertex(j, vertices.data() + (i * (d_ + 1) + j) * d_);
-    fetch_vertex_values(vertices);
-    std::exception_ptr failure;
-    try {
-      for (const Simplex& s : ring) {
-        FaceEnumerator faces(s, k_);
-        for (Simplex tau; faces.next(tau);) {
-          discovery_ = tests++;
-          if (last_owner_.of(tau.y.data()) != rank_) continue;  // (its owner tests it)
-          const Found f = classify(tau);
-          inside_hit |= f.kind == Kind::inside;
-          outside_hit |= f.kind == Kind::outside;
+    std::exception_ptr failure = push_vertex_values(vertices);
+    if (!failure) {  // (else nothing is tested: every rank throws below)
+      try {
+        for (const Simplex& s : ring) {
+          FaceEnumerator faces(s, k_);
+          for (Simplex tau; faces.next(tau);) {
+            discovery_ = tests++;
+            if (last_owner_.of(tau.y.data()) != rank_) continue;  // (its owner tests it)
+            const Found f = classify(tau);
+            inside_hit |= f.kind == Kind::inside;
+            outside_hit |= f.kind == Kind::outside;
+          }
         }
+      } catch (...) {
+        failure = std::current_exception();
       }
-    } catch (...) {
-      failure = std::current_exception();
     }
     // The ring's verdict is that of all its faces, each tested by its owner; it goes with the keys
     // of the simplices of S found (the next level, if the ring met S), so that the ranks meet once

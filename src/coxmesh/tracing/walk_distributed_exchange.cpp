@@ -168,6 +168,44 @@ void DistributedWalk::fetch_vertex_values(const std::vector<std::int32_t>& verti
   }
 }
 
+// fetch_vertex_values when every rank reads every one of `vertices` (a seed's ring, which every
+// rank goes through): each owner sends the values of its vertices to every other rank unasked, in
+// one exchange instead of two and an agreement (2000 seeds make most of the meetings of a --box
+// run). Returns the failure here (nullptr: none), for the caller to agree on; the values that did
+// arrive are kept.
+std::exception_ptr DistributedWalk::push_vertex_values(const std::vector<std::int32_t>& vertices) {
+  std::exception_ptr failure;
+  const int stride = values_.stride();
+  std::vector<double> scratch(stride);
+  std::vector<std::vector<std::byte>> pushed(ranks_);
+  try {
+    PackedKeyIndex sent(d_);
+    for (std::size_t i = 0; i < vertices.size(); i += d_) {
+      const std::int32_t* v = vertices.data() + i;
+      const auto* key = reinterpret_cast<const std::uint32_t*>(v);
+      if (last_owner_.of(v) != rank_ || !sent.insert(key, hash_words(key, d_)).second) continue;
+      evaluate_here(v, scratch.data());
+      for (int r = 0; r < ranks_; ++r)
+        if (r != rank_) put(pushed[r], v, d_), put(pushed[r], scratch.data(), stride), ++vertex_values_sent_;
+    }
+  } catch (...) {
+    failure = std::current_exception();
+  }
+  std::vector<std::size_t> counts;
+  const std::vector<std::byte> arrived = comm_.exchange(pushed, counts);
+  const std::size_t record = sizeof(std::int32_t) * d_ + sizeof(double) * stride;
+  std::int32_t v[kMaxDimension];
+  for (const std::byte* in = arrived.data(); in + record <= arrived.data() + arrived.size();) {
+    take(in, v, d_);
+    const auto* key = reinterpret_cast<const std::uint32_t*>(v);
+    const std::uint64_t h = hash_words(key, d_);
+    values_.get(v, h, scratch.data(), [&](double* values) { std::memcpy(values, in, sizeof(double) * stride); });
+    in += sizeof(double) * stride;
+    known_vertices_.insert(key, h);
+  }
+  return failure;
+}
+
 // The level's discoveries to their owners (the smallest discovery key of a simplex wins, as the
 // first discovery does in the sequential walk), and the tests of other ranks' simplices, counted
 // by the owner once.
