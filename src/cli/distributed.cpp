@@ -54,15 +54,6 @@ class MpiCommunicator final : public Communicator {
     return swap_parts(kExchangeTag, parts, sizes, counts);
   }
 
-  std::vector<std::byte> exchange_between(const std::vector<std::vector<std::byte>>& outgoing,
-                                          const std::vector<char>& sends_to, const std::vector<char>& receives_from,
-                                          std::vector<std::size_t>& counts) override {
-    std::vector<const std::byte*> parts(size_);
-    std::vector<std::size_t> sizes(size_);
-    for (int r = 0; r < size_; ++r) parts[r] = outgoing[r].data(), sizes[r] = outgoing[r].size();
-    return swap_parts(kExchangeTag, parts, sizes, counts, &sends_to, &receives_from);
-  }
-
   std::vector<std::byte> all_gather(const std::vector<std::byte>& mine, std::vector<std::size_t>& counts) override {
     return swap_parts(kAllGatherTag, std::vector<const std::byte*>(size_, mine.data()),
                       std::vector<std::size_t>(size_, mine.size()), counts);
@@ -126,15 +117,12 @@ class MpiCommunicator final : public Communicator {
   // a rank whose data was in a nap made the other spin until it woke (8 % of a rank's CPU time on
   // T3 at P = 2). Messages of one tag between two ranks arrive in the order sent, so consecutive
   // exchanges do not mix.
-  // (With `sends_to` and `receives_from`, only those parts travel: exchange_between.)
   std::vector<std::byte> swap_parts(int tag, const std::vector<const std::byte*>& parts,
-                                    const std::vector<std::size_t>& sizes, std::vector<std::size_t>& counts,
-                                    const std::vector<char>* sends_to = nullptr,
-                                    const std::vector<char>* receives_from = nullptr) {
+                                    const std::vector<std::size_t>& sizes, std::vector<std::size_t>& counts) {
     std::vector<MPI_Request> sends;
     sends.reserve(size_);
     for (int r = 0; r < size_; ++r)
-      if (r != rank_ && (!sends_to || (*sends_to)[r])) {
+      if (r != rank_) {
         MPI_Isend(parts[r], checked_int(sizes[r]), MPI_BYTE, r, tag, MPI_COMM_WORLD, &sends.emplace_back());
         bytes_sent_ += sizes[r];
       }
@@ -142,25 +130,19 @@ class MpiCommunicator final : public Communicator {
     std::vector<bool> probed(size_, false);
     counts.assign(size_, 0);
     counts[rank_] = sizes[rank_];
-    int waiting = 0;
-    for (int r = 0; r < size_; ++r)
-      if (r != rank_ && (!receives_from || (*receives_from)[r]))
-        ++waiting;
-      else
-        probed[r] = true;  // (nothing comes from r)
-    if (waiting > 0)
-      wait_until([&] {
-        for (int r = 0; r < size_; ++r) {
-          if (probed[r]) continue;
-          int found = 0, n = 0;
-          MPI_Status status;
-          MPI_Improbe(r, tag, MPI_COMM_WORLD, &found, &messages[r], &status);
-          if (!found) continue;
-          MPI_Get_count(&status, MPI_BYTE, &n);
-          counts[r] = static_cast<std::size_t>(n), probed[r] = true, --waiting;
-        }
-        return waiting == 0;
-      });
+    int waiting = size_ - 1;
+    wait_until([&] {
+      for (int r = 0; r < size_; ++r) {
+        if (r == rank_ || probed[r]) continue;
+        int found = 0, n = 0;
+        MPI_Status status;
+        MPI_Improbe(r, tag, MPI_COMM_WORLD, &found, &messages[r], &status);
+        if (!found) continue;
+        MPI_Get_count(&status, MPI_BYTE, &n);
+        counts[r] = static_cast<std::size_t>(n), probed[r] = true, --waiting;
+      }
+      return waiting == 0;
+    });
     std::size_t total = 0;
     for (const std::size_t c : counts) total += c;
     std::vector<std::byte> in(total);
@@ -168,15 +150,14 @@ class MpiCommunicator final : public Communicator {
     for (int r = 0; r < size_; at += counts[r++])
       if (r == rank_) {
         if (sizes[r] > 0) std::memcpy(in.data() + at, parts[r], sizes[r]);
-      } else if (messages[r] != MPI_MESSAGE_NULL) {
+      } else {
         MPI_Mrecv(in.data() + at, static_cast<int>(counts[r]), MPI_BYTE, &messages[r], MPI_STATUS_IGNORE);
       }
-    if (!sends.empty())
-      wait_until([&] {
-        int done = 0;
-        MPI_Testall(static_cast<int>(sends.size()), sends.data(), &done, MPI_STATUSES_IGNORE);
-        return done != 0;
-      });
+    wait_until([&] {
+      int done = 0;
+      MPI_Testall(static_cast<int>(sends.size()), sends.data(), &done, MPI_STATUSES_IGNORE);
+      return done != 0;
+    });
     return in;
   }
 

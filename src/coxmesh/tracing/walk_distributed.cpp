@@ -27,7 +27,6 @@ DistributedWalk::DistributedWalk(const Triangulation& t, IntersectionOracle& ora
       next_(words_),
       others_(words_),
       known_vertices_(d_),
-      told_(ranks_, PackedKeyIndex(d_)),
       candidates_out_(ranks_),
       tested_out_(ranks_),
       point_(d_),

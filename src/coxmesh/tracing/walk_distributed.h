@@ -93,8 +93,6 @@ class DistributedWalk {
   std::vector<double> outside_;
   // Lattice vertices whose values are in values_.
   PackedKeyIndex known_vertices_;
-  // Per rank: the vertices owned here whose values it got from this rank (all it has of them).
-  std::vector<PackedKeyIndex> told_;
   // Per rank: transverse simplices found for it this level, and the keys it owns tested here.
   std::vector<std::vector<std::byte>> candidates_out_, tested_out_;
   // S_∂ found here: (id of τ) << 32 | cofacet, key and point.

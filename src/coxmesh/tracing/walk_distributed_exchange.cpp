@@ -148,7 +148,6 @@ void DistributedWalk::fetch_vertex_values(const std::vector<std::int32_t>& verti
           take(in, v, d_);
           evaluate_here(v, scratch.data());
           put(replies[r], scratch.data(), stride);
-          told_[r].insert(reinterpret_cast<const std::uint32_t*>(v));
           ++vertex_values_sent_;
         }
     } catch (...) {
@@ -170,43 +169,30 @@ void DistributedWalk::fetch_vertex_values(const std::vector<std::int32_t>& verti
 }
 
 // fetch_vertex_values when every rank reads every one of `vertices` (a seed's ring, which every
-// rank goes through): each owner sends the values of its vertices to every other rank unasked,
-// those it has not sent it before (told_), so that both ends know, without a message, whether a
-// part goes between them: most rings of a --box run after the first walk need none (T3: 1 in 9
-// needs one), and then the ranks do not meet for their values. Returns the failure here (nullptr:
-// none), for the caller to agree on; the values that did arrive are kept.
+// rank goes through): each owner sends the values of its vertices to every other rank unasked, in
+// one exchange instead of two and an agreement (2000 seeds make most of the meetings of a --box
+// run). Returns the failure here (nullptr: none), for the caller to agree on; the values that did
+// arrive are kept.
 std::exception_ptr DistributedWalk::push_vertex_values(const std::vector<std::int32_t>& vertices) {
   std::exception_ptr failure;
   const int stride = values_.stride();
   std::vector<double> scratch(stride);
   std::vector<std::vector<std::byte>> pushed(ranks_);
-  std::vector<char> sends_to(ranks_, 0), receives_from(ranks_, 0);
   try {
-    PackedKeyIndex seen(d_);
-    std::vector<char> to(ranks_);
+    PackedKeyIndex sent(d_);
     for (std::size_t i = 0; i < vertices.size(); i += d_) {
       const std::int32_t* v = vertices.data() + i;
       const auto* key = reinterpret_cast<const std::uint32_t*>(v);
-      const std::uint64_t h = hash_words(key, d_);
-      if (!seen.insert(key, h).second) continue;
-      const int owner = last_owner_.of(v);
-      if (owner != rank_) {
-        if (known_vertices_.find(key, h) == PackedKeyIndex::kAbsent) receives_from[owner] = 1;
-        continue;
-      }
-      bool any = false;
-      for (int r = 0; r < ranks_; ++r) any |= to[r] = r != rank_ && told_[r].insert(key, h).second;
-      for (int r = 0; r < ranks_; ++r) sends_to[r] |= to[r];  // (before F, which may fail: the part goes)
+      if (last_owner_.of(v) != rank_ || !sent.insert(key, hash_words(key, d_)).second) continue;
       evaluate_here(v, scratch.data());
-      if (!any) continue;
       for (int r = 0; r < ranks_; ++r)
-        if (to[r]) put(pushed[r], v, d_), put(pushed[r], scratch.data(), stride), ++vertex_values_sent_;
+        if (r != rank_) put(pushed[r], v, d_), put(pushed[r], scratch.data(), stride), ++vertex_values_sent_;
     }
   } catch (...) {
     failure = std::current_exception();
   }
   std::vector<std::size_t> counts;
-  const std::vector<std::byte> arrived = comm_.exchange_between(pushed, sends_to, receives_from, counts);
+  const std::vector<std::byte> arrived = comm_.exchange(pushed, counts);
   const std::size_t record = sizeof(std::int32_t) * d_ + sizeof(double) * stride;
   std::int32_t v[kMaxDimension];
   for (const std::byte* in = arrived.data(); in + record <= arrived.data() + arrived.size();) {

@@ -20,16 +20,6 @@ class Communicator {
   /// the byte count from each rank in `counts` (one all-to-all of counts, one of the data).
   virtual std::vector<std::byte> exchange(const std::vector<std::vector<std::byte>>& outgoing,
                                           std::vector<std::size_t>& counts) = 0;
-  /// exchange() where each pair of ranks knows without a message whether a part goes between them:
-  /// outgoing[r] goes to r only if sends_to[r], and rank r's part is awaited only if
-  /// receives_from[r] (rank r's sends_to[this rank]). Ranks with nothing to send each other need
-  /// not meet; this one exchanges everything (the same result, the parts not sent being empty).
-  virtual std::vector<std::byte> exchange_between(const std::vector<std::vector<std::byte>>& outgoing,
-                                                  [[maybe_unused]] const std::vector<char>& sends_to,
-                                                  [[maybe_unused]] const std::vector<char>& receives_from,
-                                                  std::vector<std::size_t>& counts) {
-    return exchange(outgoing, counts);
-  }
   /// Every rank's bytes, concatenated in rank order, on every rank (counts per rank in `counts`).
   virtual std::vector<std::byte> all_gather(const std::vector<std::byte>& mine, std::vector<std::size_t>& counts) = 0;
   /// Every rank's bytes, in rank order, on rank 0 only (empty elsewhere).
