@@ -214,38 +214,65 @@ void DistributedWalk::add_seed(std::span<const double> seed, bool must_succeed) 
   bool inside_hit = false, outside_hit = false;
   std::uint64_t tests = 0;
   std::vector<std::int32_t> vertices;
+  std::vector<std::uint64_t> level_keys;              // every rank's run of keys of the ring's simplices of S
+  std::vector<std::size_t> run_begin(ranks_ + 1, 0);  // (rank r's from run_begin[r])
   reporting_ = false;
   for (int r = 0; r <= options_.seed_search_rings && !rings.ring().empty(); ++r) {
     const std::vector<Simplex>& ring = rings.ring();
     vertices.resize(ring.size() * (d_ + 1) * d_);
     for (std::size_t i = 0; i < ring.size(); ++i)
       for (int j = 0; j <= d_; ++j) ring[i].vertex(j, vertices.data() + (i * (d_ + 1) + j) * d_);
-    fetch_vertex_values(vertices);
-    std::exception_ptr failure;
-    try {
-      for (const Simplex& s : ring) {
-        FaceEnumerator faces(s, k_);
-        for (Simplex tau; faces.next(tau);) {
-          discovery_ = tests++;
-          if (last_owner_.of(tau.y.data()) != rank_) continue;  // (its owner tests it)
-          const Found f = classify(tau);
-          inside_hit |= f.kind == Kind::inside;
-          outside_hit |= f.kind == Kind::outside;
+    std::exception_ptr failure = push_vertex_values(vertices);
+    if (!failure) {  // (else nothing is tested: every rank throws below)
+      try {
+        for (const Simplex& s : ring) {
+          FaceEnumerator faces(s, k_);
+          for (Simplex tau; faces.next(tau);) {
+            discovery_ = tests++;
+            if (last_owner_.of(tau.y.data()) != rank_) continue;  // (its owner tests it)
+            const Found f = classify(tau);
+            inside_hit |= f.kind == Kind::inside;
+            outside_hit |= f.kind == Kind::outside;
+          }
         }
+      } catch (...) {
+        failure = std::current_exception();
       }
-    } catch (...) {
-      failure = std::current_exception();
     }
-    // The ring's verdict is that of all its faces, each tested by its owner.
-    std::uint64_t found[] = {failure ? 1u : 0u, inside_hit ? 1u : 0u, outside_hit ? 1u : 0u};
-    comm_.sum(found, 3);
+    // The ring's verdict is that of all its faces, each tested by its owner; it goes with the keys
+    // of the simplices of S found (the next level, if the ring met S), so that the ranks meet once
+    // per ring (a sum, then a gather of the level's keys, had cost a quarter of a seed's meetings).
+    std::vector<std::uint32_t> order;
+    std::vector<std::uint64_t> words = {failure ? 1u : 0u, inside_hit ? 1u : 0u, outside_hit ? 1u : 0u};
+    if (!failure) {
+      const std::vector<std::uint64_t> keys = next_keys_in_order(order);
+      words.insert(words.end(), keys.begin(), keys.end());
+    }
+    std::vector<std::byte> mine;
+    put(mine, words.data(), words.size());
+    std::vector<std::size_t> counts;
+    const std::vector<std::byte> gathered = comm_.all_gather(mine, counts);
+    words.resize(gathered.size() / sizeof(std::uint64_t));
+    const std::byte* in = gathered.data();
+    take(in, words.data(), words.size());
+    std::uint64_t found[3] = {0, 0, 0};
+    for (int r = 0, at = 0; r < ranks_; at += static_cast<int>(counts[r++] / sizeof(std::uint64_t))) {
+      for (int i = 0; i < 3; ++i) found[i] |= words[at + i];
+      level_keys.insert(level_keys.end(), words.begin() + at + 3,
+                        words.begin() + at + static_cast<int>(counts[r] / sizeof(std::uint64_t)));
+      run_begin[r + 1] = level_keys.size();
+    }
     if (found[0] != 0) agree(failure);
     inside_hit = found[1] != 0, outside_hit = found[2] != 0;
-    if (inside_hit) break;
+    if (inside_hit) {
+      join_level(order, level_keys, run_begin);
+      break;
+    }
+    level_keys.clear();  // (none: no rank found a simplex of S)
     rings.widen();
   }
   reporting_ = true;
-  append_level();
+  if (!inside_hit) join_level({}, {}, std::vector<std::size_t>(ranks_ + 1, 0));  // (an empty level)
   if (!inside_hit && must_succeed) throw_seed_not_found(seed, outside_hit, options_.seed_search_rings);
 }
 

@@ -56,7 +56,11 @@ class DistributedWalk {
   bool start_level();
   void exchange_candidates();
   void append_level();
+  std::vector<std::uint64_t> next_keys_in_order(std::vector<std::uint32_t>& order) const;
+  void join_level(const std::vector<std::uint32_t>& order, const std::vector<std::uint64_t>& all,
+                  const std::vector<std::size_t>& run_begin);
   void fetch_vertex_values(const std::vector<std::int32_t>& vertices);
+  std::exception_ptr push_vertex_values(const std::vector<std::int32_t>& vertices);
   void evaluate_here(const std::int32_t* v, double* out);
   // Rethrows, on every rank, the first failure of any rank (nullptr: none here). Collective.
   void agree(std::exception_ptr failure);

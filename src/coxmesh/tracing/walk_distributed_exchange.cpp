@@ -135,21 +135,24 @@ void DistributedWalk::fetch_vertex_values(const std::vector<std::int32_t>& verti
   } catch (...) {
     failure = std::current_exception();
   }
-  agree(failure);
+  // A failure here is agreed on after the requests are answered, in one agreement: the requests
+  // of a rank that failed are cut short, and nothing reads their answers.
   std::vector<std::size_t> counts;
   const std::vector<std::byte> asked_here = comm_.exchange(requests, counts);
-  try {
-    const std::byte* in = asked_here.data();
-    std::int32_t v[kMaxDimension];
-    for (int r = 0; r < ranks_; ++r)
-      for (std::size_t n = counts[r] / (sizeof(std::int32_t) * d_); n > 0; --n) {
-        take(in, v, d_);
-        evaluate_here(v, scratch.data());
-        put(replies[r], scratch.data(), stride);
-        ++vertex_values_sent_;
-      }
-  } catch (...) {
-    failure = std::current_exception();
+  if (!failure) {  // (a rank that failed answers nothing: every rank throws below)
+    try {
+      const std::byte* in = asked_here.data();
+      std::int32_t v[kMaxDimension];
+      for (int r = 0; r < ranks_; ++r)
+        for (std::size_t n = counts[r] / (sizeof(std::int32_t) * d_); n > 0; --n) {
+          take(in, v, d_);
+          evaluate_here(v, scratch.data());
+          put(replies[r], scratch.data(), stride);
+          ++vertex_values_sent_;
+        }
+    } catch (...) {
+      failure = std::current_exception();
+    }
   }
   agree(failure);
   const std::vector<std::byte> answers = comm_.exchange(replies, counts);
@@ -163,6 +166,44 @@ void DistributedWalk::fetch_vertex_values(const std::vector<std::int32_t>& verti
       known_vertices_.insert(key, h);
     }
   }
+}
+
+// fetch_vertex_values when every rank reads every one of `vertices` (a seed's ring, which every
+// rank goes through): each owner sends the values of its vertices to every other rank unasked, in
+// one exchange instead of two and an agreement (2000 seeds make most of the meetings of a --box
+// run). Returns the failure here (nullptr: none), for the caller to agree on; the values that did
+// arrive are kept.
+std::exception_ptr DistributedWalk::push_vertex_values(const std::vector<std::int32_t>& vertices) {
+  std::exception_ptr failure;
+  const int stride = values_.stride();
+  std::vector<double> scratch(stride);
+  std::vector<std::vector<std::byte>> pushed(ranks_);
+  try {
+    PackedKeyIndex sent(d_);
+    for (std::size_t i = 0; i < vertices.size(); i += d_) {
+      const std::int32_t* v = vertices.data() + i;
+      const auto* key = reinterpret_cast<const std::uint32_t*>(v);
+      if (last_owner_.of(v) != rank_ || !sent.insert(key, hash_words(key, d_)).second) continue;
+      evaluate_here(v, scratch.data());
+      for (int r = 0; r < ranks_; ++r)
+        if (r != rank_) put(pushed[r], v, d_), put(pushed[r], scratch.data(), stride), ++vertex_values_sent_;
+    }
+  } catch (...) {
+    failure = std::current_exception();
+  }
+  std::vector<std::size_t> counts;
+  const std::vector<std::byte> arrived = comm_.exchange(pushed, counts);
+  const std::size_t record = sizeof(std::int32_t) * d_ + sizeof(double) * stride;
+  std::int32_t v[kMaxDimension];
+  for (const std::byte* in = arrived.data(); in + record <= arrived.data() + arrived.size();) {
+    take(in, v, d_);
+    const auto* key = reinterpret_cast<const std::uint32_t*>(v);
+    const std::uint64_t h = hash_words(key, d_);
+    values_.get(v, h, scratch.data(), [&](double* values) { std::memcpy(values, in, sizeof(double) * stride); });
+    in += sizeof(double) * stride;
+    known_vertices_.insert(key, h);
+  }
+  return failure;
 }
 
 // The level's discoveries to their owners (the smallest discovery key of a simplex wins, as the
@@ -210,24 +251,39 @@ void DistributedWalk::exchange_candidates() {
   }
 }
 
-// The next level joins S: its global order is that of the discovery keys of all ranks.
-void DistributedWalk::append_level() {
-  const std::uint32_t n = next_.size();
-  std::vector<std::uint32_t> order(n);
+// The next level's discovery keys owned here, increasing (`order`: their simplices in next_).
+std::vector<std::uint64_t> DistributedWalk::next_keys_in_order(std::vector<std::uint32_t>& order) const {
+  order.resize(next_.size());
   std::iota(order.begin(), order.end(), 0u);
   std::sort(order.begin(), order.end(),
             [&](std::uint32_t a, std::uint32_t b) { return next_keys_[a] < next_keys_[b]; });
-  std::vector<std::byte> keys;
-  for (const std::uint32_t j : order) put(keys, &next_keys_[j], 1);
+  std::vector<std::uint64_t> keys(order.size());
+  for (std::size_t i = 0; i < order.size(); ++i) keys[i] = next_keys_[order[i]];
+  return keys;
+}
+
+// The next level joins S: its global order is that of the discovery keys of all ranks.
+void DistributedWalk::append_level() {
+  std::vector<std::uint32_t> order;
+  const std::vector<std::uint64_t> keys = next_keys_in_order(order);
+  std::vector<std::byte> mine;
+  put(mine, keys.data(), keys.size());
   std::vector<std::size_t> counts;
-  const std::vector<std::byte> all_bytes = comm_.all_gather(keys, counts);
+  const std::vector<std::byte> all_bytes = comm_.all_gather(mine, counts);
   std::vector<std::uint64_t> all(all_bytes.size() / sizeof(std::uint64_t));
   if (!all_bytes.empty()) std::memcpy(all.data(), all_bytes.data(), all_bytes.size());
-  // `all` is one increasing run per rank (distinct keys): a key's place in the level is its place in
-  // this rank's run plus, per other run, the keys below it, counted by a pointer that only moves on
-  // (a merge, not a sort of the level on every rank).
-  std::vector<std::size_t> run_begin(ranks_ + 1, 0), below(ranks_, 0);
+  std::vector<std::size_t> run_begin(ranks_ + 1, 0);
   for (int r = 0; r < ranks_; ++r) run_begin[r + 1] = run_begin[r] + counts[r] / sizeof(std::uint64_t);
+  join_level(order, all, run_begin);
+}
+
+// The next level joins S from every rank's keys: `all` holds one increasing run per rank (distinct
+// keys), rank r's from run_begin[r]; `order` lists this rank's simplices in next_ in its run's order.
+void DistributedWalk::join_level(const std::vector<std::uint32_t>& order, const std::vector<std::uint64_t>& all,
+                                 const std::vector<std::size_t>& run_begin) {
+  // A key's place in the level is its place in this rank's run plus, per other run, the keys below
+  // it, counted by a pointer that only moves on (a merge, not a sort of the level on every rank).
+  std::vector<std::size_t> below(ranks_, 0);
   level_begin_ = mine_.size();
   std::size_t place_here = 0;
   for (const std::uint32_t j : order) {
@@ -248,8 +304,8 @@ void DistributedWalk::append_level() {
     arrivals_.push_back(next_arrivals_[j]);
   }
   level_end_ = mine_.size();
-  global_size_ += all.size();
-  level_global_size_ = all.size();
+  global_size_ += run_begin[ranks_];
+  level_global_size_ = run_begin[ranks_];
   next_.clear();
   next_keys_.clear(), next_arrivals_.clear(), next_data_.clear();
 }
