@@ -1,6 +1,7 @@
 // Thesis §3.5 (faces of a permutahedral simplex).
 #pragma once
 
+#include <algorithm>
 #include <array>
 
 #include "coxmesh/lattice/simplex.h"
@@ -17,11 +18,13 @@ Simplex face_from_indices(const Simplex& sigma, const int* indices, int k);
 bool is_face_of(const Simplex& tau, const Simplex& sigma);
 
 /// The facet of σ opposite its vertex j (0 ≤ j ≤ dim σ, dim σ ≥ 1): face_from_indices with every
-/// index but j, in one pass. O(d).
+/// index but j, in one pass. O(d). kD ≠ 0: σ.d = kD, fixed at compile time so that the loops unroll
+/// (the walk's per-cofacet work, util/fixed_dimension.h); kD = 0 reads d at run time.
+template <int kD = 0>
 inline Simplex facet_without(const Simplex& sigma, int j) {
   // Dropping v_j merges blocks j−1 and j; dropping v_0 moves the base to v_1 and block 0 into the
   // last block (which holds d, so the result stays canonical).
-  const int l = sigma.k, d = sigma.d;
+  const int l = sigma.k, d = kD != 0 ? kD : sigma.d;
   COXMESH_DEBUG_ASSERT(l >= 1 && j >= 0 && j <= l);
   Simplex f = sigma;
   f.k = static_cast<std::uint8_t>(l - 1);
@@ -36,18 +39,20 @@ inline Simplex facet_without(const Simplex& sigma, int j) {
 }
 
 /// For a facet τ of μ: the index in μ's vertex order of the vertex of μ not in τ. Vertex i of τ is
-/// vertex i of μ below that index and vertex i + 1 from it on. O(d).
+/// vertex i of μ below that index and vertex i + 1 from it on. O(d). kD as facet_without.
+template <int kD = 0>
 inline int extra_vertex_index(const Simplex& tau, const Simplex& mu) {
-  COXMESH_DEBUG_ASSERT(mu.k == tau.k + 1 && mu.d == tau.d);
+  COXMESH_DEBUG_ASSERT(mu.k == tau.k + 1 && mu.d == tau.d && (kD == 0 || tau.d == kD));
   COXMESH_PARANOID_ASSERT(is_face_of(tau, mu));
   // Same base vertex: μ splits a block b of τ in two and its new vertex comes right after v_b, so
   // b is the smallest τ-block of an index whose block number changed. Otherwise the split put
-  // the part without d in front and the new vertex is μ's base.
-  for (int i = 0; i < tau.d; ++i)
-    if (tau.y[i] != mu.y[i]) return 0;
+  // the part without d in front and the new vertex is μ's base. (Branch-free over the indices.)
+  const int d = kD != 0 ? kD : tau.d;
+  std::int32_t moved = 0;
+  for (int i = 0; i < d; ++i) moved |= tau.y[i] ^ mu.y[i];
+  if (moved != 0) return 0;
   int b = tau.k + 1;
-  for (int i = 0; i <= tau.d; ++i)
-    if (tau.block[i] != mu.block[i] && tau.block[i] < b) b = tau.block[i];
+  for (int i = 0; i <= d; ++i) b = std::min(b, tau.block[i] != mu.block[i] ? int{tau.block[i]} : b);
   return b + 1;
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 
 #include "coxmesh/lattice/cofaces.h"
 #include "coxmesh/lattice/faces.h"
@@ -25,6 +26,30 @@ struct Found {
   int facet = -1;       // which facet of μ it is (the index of the vertex of μ it lacks)
 };
 
+// The per-cofacet lattice work below takes kD ≠ 0 when every simplex has d = kD, fixed at compile
+// time so that its loops over d and over the packed words unroll (the sequential walk picks kD once,
+// with_fixed_dimension, util/fixed_dimension.h); kD = 0 reads d at run time (other d, and the
+// parallel and distributed walks).
+template <int kD>
+int dimension_of(const Simplex& s) {
+  return kD != 0 ? kD : s.d;
+}
+template <int kD>
+void vertex_of(const Simplex& s, int j, std::int32_t* out) {  // Simplex::vertex
+  for (int i = 0; i < dimension_of<kD>(s); ++i) out[i] = s.vertex_coordinate(j, i);
+}
+// pack(s, key), and returns hash_words of the key.
+template <int kD>
+std::uint64_t pack_hashed(const Simplex& s, std::uint32_t* key) {
+  if constexpr (kD == 0) {
+    pack(s, key);
+  } else {  // (the same words: y, then the labels 4 to a word, the unused ones zero)
+    std::memcpy(key, s.y.data(), 4 * kD);
+    std::memcpy(key + kD, s.block.data(), 4 * (packed_words(kD) - kD));
+  }
+  return hash_words(key, packed_words(dimension_of<kD>(s)));
+}
+
 // The payload of a tested simplex that is not transverse (otherwise: where its point and D̂ are).
 constexpr std::uint32_t kMiss = 0xFFFFFFFFu;
 
@@ -40,10 +65,11 @@ inline std::uint64_t cofacet_code(const std::int32_t* w, const std::uint32_t* ta
 
 // The code of the cofacet μ seen from its facet without vertex `facet` (packed: `facet_key`): what
 // the walk records for a simplex discovered through μ.
-inline std::uint64_t arrival_code(const Simplex& mu, int facet, const std::uint32_t* facet_key, int d) {
+template <int kD = 0>
+std::uint64_t arrival_code(const Simplex& mu, int facet, const std::uint32_t* facet_key, int d) {
   std::int32_t v[kMaxDimension];
-  mu.vertex(facet, v);
-  return cofacet_code(v, facet_key, d);
+  vertex_of<kD>(mu, facet, v);
+  return cofacet_code(v, facet_key, kD != 0 ? kD : d);
 }
 
 // The other transverse facet of a cofacet μ of τ ∈ S: M̂ ∩ μ is a segment between exactly two
@@ -79,6 +105,7 @@ struct PendingCofacet {
   Simplex mu, facet;  // (facet: μ without its vertex `guess`, when guess ≥ 0)
   int entry = 0, guess = -1;
   std::uint32_t index = 0;        // μ's place among τ's cofacets
+  std::uint32_t tau = 0;          // (the sequential walk: τ's id in S)
   std::int32_t v[kMaxDimension];  // μ's vertex `entry`, not in τ
   std::uint32_t key[packed_words(kMaxDimension)];
   std::uint64_t hash = 0;
@@ -86,31 +113,36 @@ struct PendingCofacet {
 
 // The vertex w of τ's arrival cofacet not in τ, decoded once per τ: per cofacet, comparing its new
 // vertex with w costs less than encoding it (cofacet_code).
+template <int kD = 0>
 class ArrivalVertex {
  public:
-  ArrivalVertex(const std::uint32_t* tau_key, std::uint64_t arrival, int d) : d_(d), none_(arrival == kNoCofacet) {
+  ArrivalVertex(const std::uint32_t* tau_key, std::uint64_t arrival, int d)
+      : d_(kD != 0 ? kD : d), none_(arrival == kNoCofacet) {
     if (none_) return;
-    for (int i = 0; i < d; ++i)
+    for (int i = 0; i < dimension(); ++i)
       w_[i] = static_cast<std::int32_t>(tau_key[i]) + static_cast<std::int32_t>(arrival >> (2 * i) & 3) - 1;
   }
   bool is(const std::int32_t* v) const {
     if (none_) return false;
     std::int32_t diff = 0;
-    for (int i = 0; i < d_; ++i) diff |= v[i] ^ w_[i];
+    for (int i = 0; i < dimension(); ++i) diff |= v[i] ^ w_[i];
     return diff == 0;
   }
 
  private:
+  int dimension() const { return kD != 0 ? kD : d_; }
+
   int d_;
   bool none_;
   std::int32_t w_[kMaxDimension];
 };
 
 // First step: false when μ is τ's arrival (see other_transverse_facet).
-inline bool take_cofacet(IntersectionOracle& oracle, bool pivots, const Simplex& tau, const ArrivalVertex& arrival,
-                         const Simplex& mu, PendingCofacet& p) {
-  p.entry = extra_vertex_index(tau, mu);
-  mu.vertex(p.entry, p.v);
+template <int kD = 0>
+bool take_cofacet(IntersectionOracle& oracle, bool pivots, const Simplex& tau, const ArrivalVertex<kD>& arrival,
+                  const Simplex& mu, PendingCofacet& p) {
+  p.entry = extra_vertex_index<kD>(tau, mu);
+  vertex_of<kD>(mu, p.entry, p.v);
   if (arrival.is(p.v)) return false;
   p.mu = mu;
   if (pivots) oracle.prefetch_pivot(p.v);
@@ -118,31 +150,31 @@ inline bool take_cofacet(IntersectionOracle& oracle, bool pivots, const Simplex&
 }
 inline bool take_cofacet(IntersectionOracle& oracle, bool pivots, const Simplex& tau, const std::uint32_t* tau_key,
                          std::uint64_t arrival, const Simplex& mu, PendingCofacet& p) {
-  return take_cofacet(oracle, pivots, tau, ArrivalVertex(tau_key, arrival, tau.d), mu, p);
+  return take_cofacet(oracle, pivots, tau, ArrivalVertex<>(tau_key, arrival, tau.d), mu, p);
 }
 
 // Second step: false when the oracle makes no guess.
-inline bool guess_other_facet(IntersectionOracle& oracle, bool pivots, PendingCofacet& p) {
+template <int kD = 0>
+bool guess_other_facet(IntersectionOracle& oracle, bool pivots, PendingCofacet& p) {
   p.guess = -1;
   if (!pivots) return false;
   const int g = oracle.pivot_exit(p.v);
   if (g < 0) return false;
   p.guess = g < p.entry ? g : g + 1;
-  p.facet = facet_without(p.mu, p.guess);
-  pack(p.facet, p.key);
-  p.hash = hash_words(p.key, packed_words(p.mu.d));
+  p.facet = facet_without<kD>(p.mu, p.guess);
+  p.hash = pack_hashed<kD>(p.facet, p.key);
   return true;
 }
 
 // Last step: the guess tested (`classify_keyed(facet, key, hash)`), then every other facet
 // (`classify(facet)`), as other_transverse_facet.
-template <class ClassifyKeyed, class Classify>
+template <int kD = 0, class ClassifyKeyed, class Classify>
 Found classify_pending(const PendingCofacet& p, ClassifyKeyed&& classify_keyed, Classify&& classify) {
   if (p.guess >= 0)
     if (Found f = classify_keyed(p.facet, p.key, p.hash); f.kind != Kind::miss) return f.facet = p.guess, f;
   for (int j = 0; j <= p.mu.k; ++j)
     if (j != p.entry && j != p.guess)
-      if (Found f = classify(facet_without(p.mu, j)); f.kind != Kind::miss) return f.facet = j, f;
+      if (Found f = classify(facet_without<kD>(p.mu, j)); f.kind != Kind::miss) return f.facet = j, f;
   return {Kind::miss, 0};
 }
 

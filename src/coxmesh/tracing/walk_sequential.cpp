@@ -5,6 +5,7 @@
 #include "coxmesh/lattice/cofaces.h"
 #include "coxmesh/lattice/faces.h"
 #include "coxmesh/tracing/seed_search.h"
+#include "coxmesh/util/fixed_dimension.h"
 
 namespace coxmesh::walk {
 
@@ -30,44 +31,72 @@ TraceResult SequentialWalk::finish() {
 // facet of μ is either a simplex inside the domain (appended to S if new: classify) or outside it
 // (μ then crosses the boundary, at a point of S_∂).
 void SequentialWalk::walk() {
+  // The per-cofacet lattice work with d fixed at compile time (walk_common.h), for the common d.
+  with_fixed_dimension<3, 4, 6, 9>(d_, [this](auto fixed_d) { walk_from_head<decltype(fixed_d)::value>(); });
+}
+
+template <int kD>
+void SequentialWalk::walk_from_head() {
+  // The cofacets μ of τ in a pipeline of four steps: μ is taken (and the oracle told that pivot_exit
+  // will read its new vertex v); one cofacet later the oracle guesses μ's other transverse facet
+  // (and its slot in S is fetched); two cofacets later still, the key that slot names is fetched;
+  // one more, and μ is classified. Both look-ups are at random places of tables much bigger than
+  // the caches: fetched ahead, they wait less (docs/benchmarks.md). The pipeline runs on from one τ
+  // to the next, so that the first cofacets of a τ are fetched as far ahead as the others: only
+  // the guesses wait for τ's last cofacet (the oracle guesses around one τ at a time), and the
+  // classifications for a level's last τ (the next level is S's simplices found by then). The
+  // oracle and S are asked the same things in the same order as by other_transverse_facet
+  // (pivot_exit only reads values, of v, a vertex of every facet tested after it).
+  constexpr std::uint32_t kGuessLag = 1, kFetchLag = 2, kTestLag = 1, kRing = 8;
+  static_assert(kRing >= kGuessLag + kFetchLag + kTestLag + 2);
+  PendingCofacet ring[kRing];
+  std::uint32_t taken = 0, guessed = 0, fetched = 0, finished = 0;  // ring[i % kRing] for finished ≤ i < taken
+  bool pivots = false;
+  const auto advance = [&](std::uint32_t guess_lag, std::uint32_t fetch_lag, std::uint32_t test_lag) {
+    if (taken - guessed > guess_lag) {
+      PendingCofacet& p = ring[guessed++ % kRing];
+      if (guess_other_facet<kD>(oracle_, pivots, p)) result_.simplices.prefetch(p.hash);  // (its slot in S)
+    }
+    if (guessed - fetched > fetch_lag) {
+      const PendingCofacet& p = ring[fetched++ % kRing];
+      if (p.guess >= 0) result_.simplices.prefetch_key(p.hash);  // (the key its slot names)
+    }
+    if (fetched - finished > test_lag) finish_cofacet<kD>(ring[finished++ % kRing]);
+  };
   Simplex tau;
   CofaceEnumerator cofacets;
-  // The cofacets of τ in a pipeline of three steps: μ is taken (and the oracle told that pivot_exit
-  // will read its new vertex v), one cofacet later the oracle guesses μ's other transverse facet (and
-  // its slot in S is fetched), two cofacets later still μ is classified. The oracle and S are asked
-  // the same things in the same order as by other_transverse_facet (pivot_exit only reads values,
-  // of v, a vertex of every facet tested after it). Both look-ups are at random places of tables
-  // much bigger than the caches: fetched ahead, they wait less (docs/benchmarks.md).
-  CofacetPipeline pipeline;
-  for (; head_ < result_.simplices.size(); ++head_) {
+  for (;; ++head_) {
     if (head_ >= level_end_) {  // a breadth-first level starts: handed to the oracle at once
-      if (!start_level()) return;
+      while (finished < taken) advance(0, 0, 0);
+      if (head_ >= result_.simplices.size() || !start_level()) return;
       oracle_.prefetch({result_.simplices.key(head_), std::size_t{level_end_ - head_} * packed_words(d_)});
     }
     tau = result_.simplices.simplex(head_, d_);
-    const bool pivots = oracle_.pivot_enter(tau);
+    pivots = oracle_.pivot_enter(tau);
     cofacets.reset(tau, k_ + 1);
-    const ArrivalVertex arrival(result_.simplices.key(head_), arrivals_[head_], d_);
-    pipeline.run(
-        cofacets,
-        [&](const Simplex& mu, PendingCofacet& p) { return take_cofacet(oracle_, pivots, tau, arrival, mu, p); },
-        [&](PendingCofacet& p) {
-          if (guess_other_facet(oracle_, pivots, p)) result_.simplices.prefetch(p.hash);  // (its slot in S)
-        },
-        [&](const PendingCofacet& p) { finish_cofacet(p); });
+    const ArrivalVertex<kD> arrival(result_.simplices.key(head_), arrivals_[head_], d_);
+    std::uint32_t index = 0;
+    while (const Simplex* mu = cofacets.next()) {
+      PendingCofacet& p = ring[taken % kRing];
+      p.index = index++;
+      p.tau = head_;
+      if (take_cofacet<kD>(oracle_, pivots, tau, arrival, *mu, p)) ++taken, advance(kGuessLag, kFetchLag, kTestLag);
+    }
+    while (guessed < taken) advance(0, kFetchLag, kTestLag);
   }
 }
 
 // Last step: the guess tested, then every other facet, then what the walk does with the one found.
+template <int kD>
 void SequentialWalk::finish_cofacet(const PendingCofacet& p) {
   const std::uint32_t known = result_.simplices.size();
-  const Found f = classify_pending(
+  const Found f = classify_pending<kD>(
       p, [this](const Simplex& s, const std::uint32_t* key, std::uint64_t h) { return classify(s, key, h); },
-      [this](const Simplex& s) { return classify(s); });
+      [this](const Simplex& s) { return classify<kD>(s); });
   if (f.kind == Kind::miss) return;
-  if (f.kind == Kind::outside) add_boundary(p.mu, head_, outside_.data() + f.index);
+  if (f.kind == Kind::outside) add_boundary(p.mu, p.tau, outside_.data() + f.index);
   if (f.kind == Kind::inside && f.index >= known)  // discovered now, through μ
-    arrivals_[f.index] = arrival_code(p.mu, f.facet, result_.simplices.key(f.index), d_);
+    arrivals_[f.index] = arrival_code<kD>(p.mu, f.facet, result_.simplices.key(f.index), d_);
 }
 
 // The simplex limit is checked where a breadth-first level starts, in the sequential and the
@@ -87,10 +116,11 @@ bool SequentialWalk::start_level() {
 
 // Looks τ up in S, then among the other tested simplices; only if it is in neither is the oracle
 // asked, and τ appended to S (inside the domain) or to the others.
+template <int kD>
 Found SequentialWalk::classify(const Simplex& tau) {
   std::uint32_t key[packed_words(kMaxDimension)];
-  pack(tau, key);
-  return classify(tau, key, hash_words(key, packed_words(d_)));
+  const std::uint64_t h = pack_hashed<kD>(tau, key);
+  return classify(tau, key, h);
 }
 
 Found SequentialWalk::classify(const Simplex& tau, const std::uint32_t* key, std::uint64_t h) {
@@ -141,7 +171,7 @@ void SequentialWalk::add_seed(std::span<const double> seed, bool must_succeed) {
     for (const Simplex& s : rings.ring()) {
       FaceEnumerator faces(s, k_);
       for (Simplex tau; faces.next(tau);) {
-        const Found f = classify(tau);
+        const Found f = classify<0>(tau);
         inside_hit |= f.kind == Kind::inside;
         outside_hit |= f.kind == Kind::outside;
       }

@@ -37,8 +37,12 @@ class SequentialWalk {
  private:
   friend class ParallelWalk;  // the level-synchronous variant: appends to S itself
 
+  template <int kD>  // d = kD at compile time, or 0 (walk_common.h)
+  void walk_from_head();
+  template <int kD>
   void finish_cofacet(const PendingCofacet& p);
 
+  template <int kD>
   Found classify(const Simplex& tau);
   Found classify(const Simplex& tau, const std::uint32_t* key, std::uint64_t hash);  // key packed, hash_words
   void add_boundary(const Simplex& mu, std::uint32_t inside, const double* outside);
