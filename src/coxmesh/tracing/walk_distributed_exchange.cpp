@@ -195,12 +195,12 @@ std::exception_ptr DistributedWalk::push_vertex_values(const std::vector<std::in
   const std::vector<std::byte> arrived = comm_.exchange(pushed, counts);
   const std::size_t record = sizeof(std::int32_t) * d_ + sizeof(double) * stride;
   std::int32_t v[kMaxDimension];
-  for (const std::byte* in = arrived.data(); in + record <= arrived.data() + arrived.size();) {
+  for (std::size_t n = arrived.size() / record, i = 0; i < n; ++i) {  // (counted: no pointer past the end)
+    const std::byte* in = arrived.data() + i * record;
     take(in, v, d_);
     const auto* key = reinterpret_cast<const std::uint32_t*>(v);
     const std::uint64_t h = hash_words(key, d_);
     values_.get(v, h, scratch.data(), [&](double* values) { std::memcpy(values, in, sizeof(double) * stride); });
-    in += sizeof(double) * stride;
     known_vertices_.insert(key, h);
   }
   return failure;
