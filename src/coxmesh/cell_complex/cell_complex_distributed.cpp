@@ -207,7 +207,9 @@ CellLevel settle(Arrivals& arrivals, std::vector<std::vector<std::byte>>& out, s
   double x[kMaxDimension] = {};
   const std::size_t record = sizeof(std::uint32_t) * words + sizeof(std::uint64_t) + sizeof(double) * extra;
   agreed(comm, [&] {
-    for (const std::byte* at = in.data(); at + record <= in.data() + in.size();) {
+    // (the bytes left, not at + record: on an empty buffer's null pointer that is undefined)
+    const std::byte* const end = in.data() + in.size();
+    for (const std::byte* at = in.data(); static_cast<std::size_t>(end - at) >= record;) {
       std::uint64_t discovery;
       take(at, key, words);
       take(at, &discovery, 1);

@@ -216,7 +216,10 @@ void DistributedWalk::exchange_candidates() {
   const std::size_t record = sizeof(std::uint32_t) * words_ + 2 * sizeof(std::uint64_t) + sizeof(double) * (d_ + 1);
   std::uint32_t key[packed_words(kMaxDimension)];
   std::uint64_t discovery, arrival;
-  for (const std::byte* in = found.data(); in + record <= found.data() + found.size();) {
+  // (the bytes left, not in + record: past the end, or from an empty buffer's null pointer, that is
+  // undefined, and clang's UBSan reports it)
+  const std::byte* const end = found.data() + found.size();
+  for (const std::byte* in = found.data(); static_cast<std::size_t>(end - in) >= record;) {
     take(in, key, words_);
     take(in, &discovery, 1);
     take(in, &arrival, 1);
