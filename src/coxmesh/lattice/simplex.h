@@ -84,8 +84,10 @@ bool operator<(const Simplex& a, const Simplex& b);
 // d words for y, then the d+1 block labels as bytes, 4 per word. For d = 3 that is 16 bytes.
 constexpr int packed_words(int d) { return d + (d + 1 + 3) / 4; }
 // (inline, as the other helpers of the walk's and the cell complex's loops: called per cofacet)
+// kD ≠ 0: s.d = kD fixed at compile time, so that the loops unroll (the walk's per-cofacet keys).
+template <int kD = 0>
 inline void pack(const Simplex& s, std::uint32_t* out) {
-  const int d = s.d;
+  const int d = kD != 0 ? kD : s.d;
   for (int i = 0; i < d; ++i) out[i] = static_cast<std::uint32_t>(s.y[i]);
   std::uint32_t* labels = out + d;
   const int nwords = (d + 1 + 3) / 4;

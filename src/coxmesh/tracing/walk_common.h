@@ -5,7 +5,6 @@
 #pragma once
 
 #include <cstdint>
-#include <cstring>
 
 #include "coxmesh/lattice/cofaces.h"
 #include "coxmesh/lattice/faces.h"
@@ -41,12 +40,7 @@ void vertex_of(const Simplex& s, int j, std::int32_t* out) {  // Simplex::vertex
 // pack(s, key), and returns hash_words of the key.
 template <int kD>
 std::uint64_t pack_hashed(const Simplex& s, std::uint32_t* key) {
-  if constexpr (kD == 0) {
-    pack(s, key);
-  } else {  // (the same words: y, then the labels 4 to a word, the unused ones zero)
-    std::memcpy(key, s.y.data(), 4 * kD);
-    std::memcpy(key + kD, s.block.data(), 4 * (packed_words(kD) - kD));
-  }
+  pack<kD>(s, key);
   return hash_words(key, packed_words(dimension_of<kD>(s)));
 }
 
