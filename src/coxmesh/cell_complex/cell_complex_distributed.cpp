@@ -12,6 +12,7 @@
 #include "coxmesh/errors.h"
 #include "coxmesh/lattice/cofaces.h"
 #include "coxmesh/lattice/faces.h"
+#include "coxmesh/util/fixed_dimension.h"
 
 namespace coxmesh {
 
@@ -115,8 +116,9 @@ struct Arrivals {
   void add(const std::uint32_t* key, std::uint64_t discovery, const double* x) {
     add(key, hash_words(key, found.words()), discovery, x);
   }
+  template <int kWords = 0>  // (kWords: the key's words fixed at compile time, 0: read at run time)
   void add(const std::uint32_t* key, std::uint64_t hash, std::uint64_t discovery, const double* x) {
-    const int words = found.words();
+    const int words = kWords != 0 ? kWords : found.words();
     // (into arrays of a batch's size: a few words each, no growth to check)
     std::uint32_t* to = batch_keys.data() + batched * words;
     for (int i = 0; i < words; ++i) to[i] = key[i];
@@ -159,9 +161,10 @@ struct Arrivals {
     if (owner == rank) return add(key, discovery, x);
     append(out[owner], key, discovery, x);
   }
+  template <int kWords = 0>
   void send(std::vector<std::vector<std::byte>>& out, int owner, int rank, const std::uint32_t* key, std::uint64_t hash,
             std::uint64_t discovery, const double* x) {
-    if (owner == rank) return add(key, hash, discovery, x);
+    if (owner == rank) return add<kWords>(key, hash, discovery, x);
     append(out[owner], key, discovery, x);
   }
   void append(std::vector<std::byte>& out, const std::uint32_t* key, std::uint64_t discovery, const double* x) const {
@@ -336,15 +339,21 @@ CellLevel next_level(const CellLevel& prev, const std::vector<std::uint32_t>& pr
     if (n > 0) arrivals.expected = sampled * prev.size() / n;
   }
   agreed(comm, [&] {
-    for (std::uint32_t c = 0; c < prev.size(); ++c) {
-      std::uint64_t discovery = std::uint64_t{prev_ids[c]} << 32;
-      // (straight from the packed keys, with their hashes, as the one-process complex enumerates them)
-      PackedCofacets(prev.simplices.key(c), d).for_each([&](const std::uint32_t* nu, std::uint64_t hash) {
-        // (y, the minimal vertex, first in the key)
-        arrivals.send(out, last_owner.of(reinterpret_cast<const std::int32_t*>(nu)), comm.rank(), nu, hash, discovery++,
-                      &no_values);
-      });
-    }
+    // (d fixed at compile time for the common d, as in the one-process complex: the loops over d and
+    // over the key's words unroll)
+    with_fixed_dimension<2, 3, 4, 6, 9>(d, [&](auto fixed_d) {
+      constexpr int kD = decltype(fixed_d)::value;
+      constexpr int kWords = kD != 0 ? packed_words(kD) : 0;
+      for (std::uint32_t c = 0; c < prev.size(); ++c) {
+        std::uint64_t discovery = std::uint64_t{prev_ids[c]} << 32;
+        // (straight from the packed keys, with their hashes, as the one-process complex enumerates them)
+        PackedCofacets<kD>(prev.simplices.key(c), d).for_each([&](const std::uint32_t* nu, std::uint64_t hash) {
+          // (y, the minimal vertex, first in the key)
+          arrivals.send<kWords>(out, last_owner.of<kD>(reinterpret_cast<const std::int32_t*>(nu)), comm.rank(), nu,
+                                hash, discovery++, &no_values);
+        });
+      }
+    });
   });
   return settle(arrivals, out, prev_size, comm, ids, size, nullptr, in_order);
 }
