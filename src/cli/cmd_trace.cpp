@@ -261,16 +261,17 @@ void run(TraceCliOptions o) {
             return {n.points, n.cells, n.skipped};
           },
           &distributed, &pieces_written, &topology_stats);
-    else if (pieces)
-      mo.complex_tracer = distributed_complex_tracer(
-          *comm,
-          [&](CellComplexPart& part) {
-            if (write) write_native_piece_file(output, comm->rank(), part);
-            return PartCounts{};
-          },
-          &distributed, nullptr, &topology_stats);
-    else
+    else if (pieces) {
+      PartWriter write_piece;  // (none without a file: the parts' levels then need no global order)
+      if (write)
+        write_piece = [&](CellComplexPart& part) {
+          write_native_piece_file(output, comm->rank(), part);
+          return PartCounts{};
+        };
+      mo.complex_tracer = distributed_complex_tracer(*comm, write_piece, &distributed, nullptr, &topology_stats);
+    } else {
       mo.tracer = distributed_tracer(*comm, &distributed);
+    }
   }
   std::optional<ProgressDisplay> progress;
   if (!o.json && !o.quiet && (!comm || comm->rank() == 0)) {

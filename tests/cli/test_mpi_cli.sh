@@ -61,6 +61,10 @@ check "no file, 2 processes: the same summary" "$(stable no-file.json)" "$(stabl
 check "no file, 2 processes: rank 0 gets part of the cells" yes "$(sed -n 's/.*topology: \([0-9]*\) of \([0-9]*\) cells.*/\1 \2/p' no-file.2.err |
   awk '{ print ($1 < $2 ? "yes" : "no") }')"
 check "no file, 2 processes: no file written" 0 "$(ls | grep -c -v -E '[.](json|err|cxm)$' || true)"
+# (a boundary too, on 3 processes: each rank's levels are left as their cells arrived)
+"$bin" trace --preset torus --box -2,-2,-0.1,2,2,2 --threads 1 --json > no-file-box.json
+mpi 3 trace --preset torus --box -2,-2,-0.1,2,2,2 --json > no-file-box.3.json 2> no-file-box.3.err
+check "no file with a boundary, 3 processes: the same summary" "$(stable no-file-box.json)" "$(stable no-file-box.3.json)"
 # The summary of pieces (no process holds the complex) still counts the traced simplices.
 summary=$(mpi 2 trace --preset torus -o rate.cxm)
 check "pieces: the summary's simplex rate" "0 1" "$(grep -c '(0 simplices/s)' <<<"$summary") $(grep -c '^  traced simplices   [1-9]' <<<"$summary")"

@@ -154,13 +154,14 @@ TraceResult trace_on_ranks(int ranks, const Triangulation& t, const FunctionPtr&
   return root;
 }
 
-// Traces and builds the cell complex on `ranks` threads; returns every rank's part, the whole
-// complex gathered on rank 0 in `gathered`, and each rank's closure for writing in `closures`.
+// Traces and builds the cell complex on `ranks` threads (its levels in global order or as they
+// arrived); returns every rank's part, the whole complex gathered on rank 0 in `gathered`, and each
+// rank's closure for writing in `closures`.
 std::vector<CellComplexPart> cell_parts_on_ranks(int ranks, const Triangulation& t, const FunctionPtr& f,
                                                  const FunctionPtr& domain,
                                                  const std::vector<std::vector<double>>& seeds,
                                                  const TraceOptions& options, CellComplex* gathered,
-                                                 std::vector<CellClosure>* closures) {
+                                                 std::vector<CellClosure>* closures, bool in_global_order = true) {
   Mailboxes mailboxes(ranks);
   std::vector<CellComplexPart> parts(ranks);
   if (closures) closures->assign(ranks, {});
@@ -170,7 +171,7 @@ std::vector<CellComplexPart> cell_parts_on_ranks(int ranks, const Triangulation&
       ThreadCommunicator comm(mailboxes, r);
       RankOracle o(t, f, domain);
       parts[r] = build_cell_complex_distributed(
-          trace_part_distributed(t, o.oracle, *o.values, o.evaluate, seeds, options, comm), comm);
+          trace_part_distributed(t, o.oracle, *o.values, o.evaluate, seeds, options, comm), comm, in_global_order);
       if (closures) {
         CellComplexPart copy = parts[r];
         (*closures)[r] = closure_for_writing(copy, comm);
@@ -389,6 +390,11 @@ TEST(DistributedCellComplex, EveryLevelAsOneProcessNumbersIt) {
       write_native(on_rank_0, gathered);
       EXPECT_TRUE(assembled.str() == one_file.str()) << c.name << ", " << ranks << " ranks";
       EXPECT_TRUE(on_rank_0.str() == one_file.str()) << c.name << ", " << ranks << " ranks, gathered";
+      // Levels left as their cells arrived (without a file) hold the same cells, placed by their ids.
+      std::ostringstream as_arrived;
+      write_native(as_arrived, assemble_cell_complex(cell_parts_on_ranks(ranks, c.t, c.f, c.domain, seeds, options,
+                                                                         nullptr, nullptr, false)));
+      EXPECT_TRUE(as_arrived.str() == one_file.str()) << c.name << ", " << ranks << " ranks, as arrived";
     }
   }
 }
@@ -445,6 +451,12 @@ TEST(DistributedTopology, AsOneProcess) {
       if (one.closed) {
         EXPECT_LT(stats[0].cells_to_rank0, stats[0].cells / 2);
       }
+      // The levels as their cells arrived (without a file): the same topology, as much left to rank 0.
+      std::vector<DistributedTopologyStats> arrived_stats;
+      for (const TopologyReport& split : topology_on_ranks(
+               cell_parts_on_ranks(ranks, c.t, c.f, c.domain, seeds, options, nullptr, nullptr, false), arrived_stats))
+        expect_same_topology(split, one);
+      EXPECT_EQ(arrived_stats[0].cells_to_rank0, stats[0].cells_to_rank0);
     }
   }
 }

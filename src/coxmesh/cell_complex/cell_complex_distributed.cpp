@@ -12,6 +12,7 @@
 #include "coxmesh/errors.h"
 #include "coxmesh/lattice/cofaces.h"
 #include "coxmesh/lattice/faces.h"
+#include "coxmesh/util/fixed_dimension.h"
 
 namespace coxmesh {
 
@@ -115,8 +116,9 @@ struct Arrivals {
   void add(const std::uint32_t* key, std::uint64_t discovery, const double* x) {
     add(key, hash_words(key, found.words()), discovery, x);
   }
+  template <int kWords = 0>  // (kWords: the key's words fixed at compile time, 0: read at run time)
   void add(const std::uint32_t* key, std::uint64_t hash, std::uint64_t discovery, const double* x) {
-    const int words = found.words();
+    const int words = kWords != 0 ? kWords : found.words();
     // (into arrays of a batch's size: a few words each, no growth to check)
     std::uint32_t* to = batch_keys.data() + batched * words;
     for (int i = 0; i < words; ++i) to[i] = key[i];
@@ -159,9 +161,10 @@ struct Arrivals {
     if (owner == rank) return add(key, discovery, x);
     append(out[owner], key, discovery, x);
   }
+  template <int kWords = 0>
   void send(std::vector<std::vector<std::byte>>& out, int owner, int rank, const std::uint32_t* key, std::uint64_t hash,
             std::uint64_t discovery, const double* x) {
-    if (owner == rank) return add(key, hash, discovery, x);
+    if (owner == rank) return add<kWords>(key, hash, discovery, x);
     append(out[owner], key, discovery, x);
   }
   void append(std::vector<std::byte>& out, const std::uint32_t* key, std::uint64_t discovery, const double* x) const {
@@ -192,13 +195,16 @@ struct Arrivals {
 
 CellLevel ordered_level(Arrivals& a, const std::vector<std::uint32_t>& global, std::vector<std::uint32_t>& ids,
                         std::vector<double>* data);
+CellLevel level_as_arrived(Arrivals& a, std::vector<std::uint32_t>& global, std::vector<std::uint32_t>& ids);
 
 // The level that `arrivals` and the messages `out` make, settled on each owner: numbered by the
 // cells' smallest discovery keys (prev_size: the size of the level the keys' ids are from), in
-// global order here, with their facets and the extra values of the smallest key in `data`. The
-// level's keys come without a hash table (reindex() builds it).
+// global order here unless `in_order` is false (then as they arrived), with their facets and the
+// extra values of the smallest key in `data` (in global order only). The level's keys come without
+// a hash table (reindex() builds it).
 CellLevel settle(Arrivals& arrivals, std::vector<std::vector<std::byte>>& out, std::uint64_t prev_size,
-                 Communicator& comm, std::vector<std::uint32_t>& ids, std::uint64_t& size, std::vector<double>* data) {
+                 Communicator& comm, std::vector<std::uint32_t>& ids, std::uint64_t& size, std::vector<double>* data,
+                 bool in_order = true) {
   std::vector<std::size_t> counts;
   std::vector<std::byte> in = comm.exchange(out, counts);
   out.clear();
@@ -222,7 +228,9 @@ CellLevel settle(Arrivals& arrivals, std::vector<std::vector<std::byte>>& out, s
   std::vector<std::uint32_t> global;
   size = number_by_keys(arrivals.first, prev_size, comm, global);
   CellLevel level;
-  agreed(comm, [&] { level = ordered_level(arrivals, global, ids, data); });
+  agreed(comm, [&] {
+    level = in_order ? ordered_level(arrivals, global, ids, data) : level_as_arrived(arrivals, global, ids);
+  });
   return level;
 }
 
@@ -240,6 +248,42 @@ void sort_by_high_word(std::vector<std::uint64_t>& v, int bits) {
     for (const std::uint64_t e : v) sorted[start[(e >> low) & mask]++] = e;
     v.swap(sorted);
   }
+}
+
+// Facet lists in global ids, increasing (as the single process finds them), of the n cells of
+// `incidences` ((cell) << 32 | facet) whose places in the level `place(cell)` gives: a counting
+// sort by place; a cell's facets found here come in increasing order when the level below was
+// enumerated in global order, those from other ranks after them.
+template <class Place>
+void set_facets(CellLevel& level, std::uint32_t n, std::vector<std::uint64_t>& incidences, Place&& place) {
+  level.facet_offsets.assign(n + 1, 0);
+  for (const std::uint64_t e : incidences) ++level.facet_offsets[place(e >> 32) + 1];
+  for (std::uint32_t c = 0; c < n; ++c) level.facet_offsets[c + 1] += level.facet_offsets[c];
+  level.facet_ids.resize(incidences.size());
+  {
+    std::vector<std::uint32_t> next(level.facet_offsets.begin(), level.facet_offsets.end() - 1);
+    for (const std::uint64_t e : incidences) level.facet_ids[next[place(e >> 32)]++] = static_cast<std::uint32_t>(e);
+  }
+  for (std::uint32_t c = 0; c < n; ++c) {
+    const auto from = level.facet_ids.begin() + level.facet_offsets[c],
+               to = level.facet_ids.begin() + level.facet_offsets[c + 1];
+    if (!std::is_sorted(from, to)) std::sort(from, to);
+  }
+  std::vector<std::uint64_t>().swap(incidences);
+}
+
+// The cells that arrived here as they arrived, with their global ids (`global`, taken) and facets:
+// when no one reads this rank's level in global order (without a file, the topology places each
+// cell by its id), the reordering of ordered_level is spared (a sort and a copy of the level).
+CellLevel level_as_arrived(Arrivals& a, std::vector<std::uint32_t>& global, std::vector<std::uint32_t>& ids) {
+  a.found.release_index();
+  CellLevel level;
+  const std::uint32_t n = a.found.size();
+  level.simplices = std::move(a.found);
+  a.found = PackedKeyIndex(level.simplices.words());
+  ids = std::move(global);
+  set_facets(level, n, a.incidences, [](std::uint64_t c) { return static_cast<std::uint32_t>(c); });
+  return level;
 }
 
 // The cells that arrived here in global order (by their smallest keys, whose ranks `global` holds),
@@ -273,30 +317,14 @@ CellLevel ordered_level(Arrivals& a, const std::vector<std::uint32_t>& global, s
       data->insert(data->end(), values.begin() + std::ptrdiff_t{order[i]} * extra,
                    values.begin() + std::ptrdiff_t{order[i] + 1} * extra);
   }
-  // Facet lists in global ids, increasing (as the single process finds them): a counting sort by
-  // cell; a cell's facets found here come in increasing order, those from other ranks after them.
-  const std::vector<std::uint64_t>& incidences = a.incidences;
-  level.facet_offsets.assign(n + 1, 0);
-  for (const std::uint64_t e : incidences) ++level.facet_offsets[place[e >> 32] + 1];
-  for (std::uint32_t c = 0; c < n; ++c) level.facet_offsets[c + 1] += level.facet_offsets[c];
-  level.facet_ids.resize(incidences.size());
-  {
-    std::vector<std::uint32_t> next(level.facet_offsets.begin(), level.facet_offsets.end() - 1);
-    for (const std::uint64_t e : incidences) level.facet_ids[next[place[e >> 32]]++] = static_cast<std::uint32_t>(e);
-  }
-  for (std::uint32_t c = 0; c < n; ++c) {
-    const auto from = level.facet_ids.begin() + level.facet_offsets[c],
-               to = level.facet_ids.begin() + level.facet_offsets[c + 1];
-    if (!std::is_sorted(from, to)) std::sort(from, to);
-  }
-  std::vector<std::uint64_t>().swap(a.incidences);
+  set_facets(level, n, a.incidences, [&](std::uint64_t c) { return place[c]; });
   return level;
 }
 
 // Level j from this rank's part of level j − 1 (next_level_plain): the l-cofaces of each cell's
 // simplex go to their owners with the cell's global id and their place among its cofaces.
 CellLevel next_level(const CellLevel& prev, const std::vector<std::uint32_t>& prev_ids, std::uint64_t prev_size, int d,
-                     int l, Communicator& comm, std::vector<std::uint32_t>& ids, std::uint64_t& size) {
+                     int l, Communicator& comm, std::vector<std::uint32_t>& ids, std::uint64_t& size, bool in_order) {
   const int words = packed_words(d), ranks = comm.size();
   std::vector<std::vector<std::byte>> out(ranks);
   Arrivals arrivals(words, 0, true);
@@ -311,22 +339,28 @@ CellLevel next_level(const CellLevel& prev, const std::vector<std::uint32_t>& pr
     if (n > 0) arrivals.expected = sampled * prev.size() / n;
   }
   agreed(comm, [&] {
-    for (std::uint32_t c = 0; c < prev.size(); ++c) {
-      std::uint64_t discovery = std::uint64_t{prev_ids[c]} << 32;
-      // (straight from the packed keys, with their hashes, as the one-process complex enumerates them)
-      PackedCofacets(prev.simplices.key(c), d).for_each([&](const std::uint32_t* nu, std::uint64_t hash) {
-        // (y, the minimal vertex, first in the key)
-        arrivals.send(out, last_owner.of(reinterpret_cast<const std::int32_t*>(nu)), comm.rank(), nu, hash, discovery++,
-                      &no_values);
-      });
-    }
+    // (d fixed at compile time for the common d, as in the one-process complex: the loops over d and
+    // over the key's words unroll)
+    with_fixed_dimension<2, 3, 4, 6, 9>(d, [&](auto fixed_d) {
+      constexpr int kD = decltype(fixed_d)::value;
+      constexpr int kWords = kD != 0 ? packed_words(kD) : 0;
+      for (std::uint32_t c = 0; c < prev.size(); ++c) {
+        std::uint64_t discovery = std::uint64_t{prev_ids[c]} << 32;
+        // (straight from the packed keys, with their hashes, as the one-process complex enumerates them)
+        PackedCofacets<kD>(prev.simplices.key(c), d).for_each([&](const std::uint32_t* nu, std::uint64_t hash) {
+          // (y, the minimal vertex, first in the key)
+          arrivals.send<kWords>(out, last_owner.of<kD>(reinterpret_cast<const std::int32_t*>(nu)), comm.rank(), nu,
+                                hash, discovery++, &no_values);
+        });
+      }
+    });
   });
-  return settle(arrivals, out, prev_size, comm, ids, size, nullptr);
+  return settle(arrivals, out, prev_size, comm, ids, size, nullptr, in_order);
 }
 
 }  // namespace
 
-CellComplexPart build_cell_complex_distributed(TracePart&& trace, Communicator& comm) {
+CellComplexPart build_cell_complex_distributed(TracePart&& trace, Communicator& comm, bool in_global_order) {
   CellComplexPart part;
   CellComplex& cc = part.cells;
   const int d = trace.ambient_dimension, k = trace.codimension, m = d - k, words = packed_words(d);
@@ -365,7 +399,7 @@ CellComplexPart build_cell_complex_distributed(TracePart&& trace, Communicator& 
     std::vector<std::uint32_t> ids;
     std::uint64_t size = 0;
     cc.interior.push_back(next_level(cc.interior[j - 1], part.interior_ids[j - 1], part.interior_sizes[j - 1], d, k + j,
-                                     comm, ids, size));
+                                     comm, ids, size, in_global_order));
     part.interior_ids.push_back(std::move(ids));
     part.interior_sizes.push_back(size);
     CellLevel& level = cc.interior[j];
@@ -380,7 +414,7 @@ CellComplexPart build_cell_complex_distributed(TracePart&& trace, Communicator& 
     }
     if (has_boundary && j <= m - 1) {
       cc.boundary.push_back(next_level(cc.boundary[j - 1], part.boundary_ids[j - 1], part.boundary_sizes[j - 1], d,
-                                       k + 1 + j, comm, ids, size));
+                                       k + 1 + j, comm, ids, size, in_global_order));
       part.boundary_ids.push_back(std::move(ids));
       part.boundary_sizes.push_back(size);
     }

@@ -15,10 +15,12 @@ namespace coxmesh {
 /// simplex's minimal vertex, as in the walk). Gathered over the ranks, each cell at its global id,
 /// the levels are those build_cell_complex builds from the whole trace (keys, facets, boundary_facet).
 struct CellComplexPart {
-  /// This rank's cells, each level in global order; facet_ids and boundary_facet hold global ids;
-  /// vertices (boundary_vertices) has a row per cell of interior[0] (boundary[0]) here.
+  /// This rank's cells, each level in global order (but see build_cell_complex_distributed);
+  /// facet_ids and boundary_facet hold global ids; vertices (boundary_vertices) has a row per cell
+  /// of interior[0] (boundary[0]) here.
   CellComplex cells;
-  /// The global id of each cell here (increasing), per level, as cells.interior and cells.boundary.
+  /// The global id of each cell here (increasing, in global order), per level, as cells.interior and
+  /// cells.boundary.
   std::vector<std::vector<std::uint32_t>> interior_ids, boundary_ids;
   /// Cells per level over all ranks.
   std::vector<std::uint64_t> interior_sizes, boundary_sizes;
@@ -29,8 +31,10 @@ struct CellComplexPart {
 /// from) << 32 | position among its cofaces); each owner keeps a cell's smallest key, and the level
 /// is numbered in the order of those keys, as the single process discovers it. Memory per rank:
 /// its cells and, while a level is built, that level's incidences at this rank and the records that
-/// cross to or from it.
-CellComplexPart build_cell_complex_distributed(TracePart&& trace, Communicator& comm);
+/// cross to or from it. Without `in_global_order`, the levels above the vertex cells stay in the order
+/// their cells reached this rank (with their ids): enough for gather_cell_complex and the topology,
+/// which place each cell by its id, not for closure_for_writing nor a piece of a file.
+CellComplexPart build_cell_complex_distributed(TracePart&& trace, Communicator& comm, bool in_global_order = true);
 
 /// The whole complex from all the parts (in any order), each cell at its global id: the one
 /// build_cell_complex builds in one process. Throws InputError unless the parts cover every level

@@ -43,11 +43,13 @@ constexpr int owner_block_bits(int d) { return d >= 5 ? 1 : (6 + d / 2) / d; }
 class LastOwner {
  public:
   LastOwner(int d, int ranks) : d_(d), ranks_(ranks), bits_(owner_block_bits(d)) {}
+  template <int kD = 0>  // (kD: d fixed at compile time, 0: read at run time)
   int of(const std::int32_t* v) {
+    const int d = kD != 0 ? kD : d_;
     std::int32_t diff = owner_ < 0;  // (a loop, not memcmp: a call for a few ints)
-    for (int i = 0; i < d_; ++i) diff |= (v[i] >> bits_) ^ block_[i];
+    for (int i = 0; i < d; ++i) diff |= (v[i] >> bits_) ^ block_[i];
     if (diff != 0) {
-      for (int i = 0; i < d_; ++i) block_[i] = v[i] >> bits_;
+      for (int i = 0; i < d; ++i) block_[i] = v[i] >> bits_;
       owner_ = owner_rank(v, d_, ranks_);
     }
     return owner_;

@@ -7,6 +7,7 @@
 #include "coxmesh/lattice/cofaces.h"
 #include "coxmesh/lattice/faces.h"
 #include "coxmesh/tracing/seed_search.h"
+#include "coxmesh/util/fixed_dimension.h"
 
 namespace coxmesh::walk {
 
@@ -114,7 +115,13 @@ void DistributedWalk::set_fresh_arrival(std::uint64_t arrival) {
 }
 
 // SequentialWalk::walk on this rank's part of one level, in the order of their global ids, with
-// its pipeline: the tables here are as far beyond the caches as S is there.
+// its pipeline: the tables here are as far beyond the caches as S is there. The per-cofacet lattice
+// work with d fixed at compile time for the common d, as there (walk_common.h).
+void DistributedWalk::walk_level() {
+  with_fixed_dimension<3, 4, 6, 9>(d_, [this](auto fixed_d) { walk_level<decltype(fixed_d)::value>(); });
+}
+
+template <int kD>
 void DistributedWalk::walk_level() {
   Simplex tau;
   CofaceEnumerator cofacets;
@@ -122,16 +129,15 @@ void DistributedWalk::walk_level() {
   for (std::uint32_t i = level_begin_; i < level_end_; ++i) {
     tau = mine_.simplex(i, d_);
     const bool pivots = oracle_.pivot_enter(tau);
+    const ArrivalVertex<kD> arrival(mine_.key(i), arrivals_[i], d_);
     cofacets.reset(tau, k_ + 1);
     pipeline.run(
         cofacets,
-        [&](const Simplex& mu, PendingCofacet& p) {
-          return take_cofacet(oracle_, pivots, tau, mine_.key(i), arrivals_[i], mu, p);
-        },
+        [&](const Simplex& mu, PendingCofacet& p) { return take_cofacet<kD>(oracle_, pivots, tau, arrival, mu, p); },
         [&](PendingCofacet& p) {
-          if (guess_other_facet(oracle_, pivots, p)) fetch_slots(p);
+          if (guess_other_facet<kD>(oracle_, pivots, p)) fetch_slots(p);
         },
-        [&](const PendingCofacet& p) { finish_cofacet(i, p); });
+        [&](const PendingCofacet& p) { finish_cofacet<kD>(i, p); });
   }
 }
 
@@ -141,11 +147,12 @@ void DistributedWalk::fetch_slots(const PendingCofacet& p) {
   others_.prefetch(p.hash);
 }
 
+template <int kD>
 void DistributedWalk::finish_cofacet(std::uint32_t i, const PendingCofacet& p) {
   const Simplex& mu = p.mu;
   discovery_ = std::uint64_t{global_ids_[i]} << 32 | p.index;
   fresh_ = Fresh::no;
-  const Found f = classify_pending(
+  const Found f = classify_pending<kD>(
       p, [this](const Simplex& s, const std::uint32_t* key, std::uint64_t h) { return classify(s, key, h); },
       [this](const Simplex& s) { return classify(s); });
   if (f.kind == Kind::outside) {
@@ -156,7 +163,7 @@ void DistributedWalk::finish_cofacet(std::uint32_t i, const PendingCofacet& p) {
     append_boundary_point(boundary_points_, points_.data() + static_cast<std::size_t>(i) * d_, domain_values_[i],
                           outside_.data() + f.index, d_);
   } else if (f.kind == Kind::inside && fresh_ != Fresh::no) {
-    set_fresh_arrival(arrival_code(mu, f.facet, fresh_key_, d_));
+    set_fresh_arrival(arrival_code<kD>(mu, f.facet, fresh_key_, d_));
   }
 }
 

@@ -48,10 +48,13 @@ class DistributedWalk {
   Found classify(const Simplex& tau);
   Found classify(const Simplex& tau, const std::uint32_t* key, std::uint64_t hash);  // key packed, hash_words
   void fetch_slots(const PendingCofacet& p);
+  template <int kD>
   void finish_cofacet(std::uint32_t i, const PendingCofacet& p);
   Found test(const std::uint32_t* key, std::uint64_t hash, const Simplex& tau, int owner, std::uint32_t known,
              const Slots& slots);
   void set_fresh_arrival(std::uint64_t arrival);
+  void walk_level();
+  template <int kD>  // (d fixed at compile time, 0: read at run time)
   void walk_level();
   bool start_level();
   void exchange_candidates();
