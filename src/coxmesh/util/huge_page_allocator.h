@@ -1,8 +1,8 @@
 // An allocator for the big flat arrays of coxmesh (hash tables, key arrays, points, incidences):
 // blocks of 2 MiB and more are mapped directly, 2 MiB-aligned and rounded up to whole 2 MiB pages,
-// so they arrive zero-filled by the kernel (zeroed_huge_vector does not zero them again), go back to
-// the system when freed, and can be backed by transparent huge pages. Smaller blocks come from
-// operator new as usual.
+// so they arrive zero-filled by the kernel (zeroed_huge_vector does not zero them again) and can be
+// backed by transparent huge pages; freed, they are kept a while for the next ones (big_blocks
+// below). Smaller blocks come from operator new as usual.
 // Huge pages are asked for (madvise) only with COXMESH_HUGE_PAGES=1 in the environment: where the
 // system enables them for all memory they are used anyway, and asking for them is a gamble. On a
 // virtual machine that backs its memory lazily, the first touch of a huge page cost 30 times the
@@ -32,6 +32,19 @@ inline bool huge_pages_requested() {
   return requested;
 }
 
+// Blocks of whole 2 MiB pages, 2 MiB-aligned. A freed block is kept for the next ones (up to a
+// bound) instead of going back to the system at once: its pages are written already, and a page
+// written for the first time costs a page fault and the kernel's zeroing, so the phases of a run
+// reuse each other's pages (util/big_blocks.cpp).
+namespace big_blocks {
+/// A block of `bytes` (a multiple of 2 MiB).
+void* take(std::size_t bytes);
+/// Whether the last block take() returned on this thread came zero-filled from the system (false
+/// for a kept block, which holds what it held).
+bool last_take_zero_filled();
+void give_back(void* p, std::size_t bytes);
+}  // namespace big_blocks
+
 template <class T>
 struct HugePageAllocator {
   using value_type = T;
@@ -45,30 +58,11 @@ struct HugePageAllocator {
     if (n > std::size_t(-1) / sizeof(T) - kPage) throw std::bad_array_new_length();
     const std::size_t bytes = n * sizeof(T);
     if (bytes < kPage) return static_cast<T*>(::operator new(bytes));
-    const std::size_t rounded = round_up(bytes);  // (a partial last 2 MiB would get small pages)
-#if defined(__SANITIZE_ADDRESS__)                 // keep AddressSanitizer's view of the block
-    void* p = ::operator new (rounded, std::align_val_t{kPage});
-    std::fill_n(static_cast<char*>(p), rounded, 0);
-#else
-    // Map 2 MiB more than needed, then unmap the ends so that the block is 2 MiB-aligned.
-    void* raw = mmap(nullptr, rounded + kPage, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-    if (raw == MAP_FAILED) throw std::bad_alloc();
-    const auto start = reinterpret_cast<std::uintptr_t>(raw);
-    const std::uintptr_t aligned = (start + kPage - 1) / kPage * kPage;
-    if (aligned > start) munmap(raw, aligned - start);
-    munmap(reinterpret_cast<void*>(aligned + rounded), start + kPage - aligned);  // (never empty)
-    void* p = reinterpret_cast<void*>(aligned);
-#endif
-    if (huge_pages_requested()) madvise(p, rounded, MADV_HUGEPAGE);  // (advice only)
-    return static_cast<T*>(p);
+    return static_cast<T*>(big_blocks::take(round_up(bytes)));  // (a partial last 2 MiB would get small pages)
   }
   void deallocate(T* p, std::size_t n) {
     if (n * sizeof(T) < kPage) return ::operator delete(p);
-#if defined(__SANITIZE_ADDRESS__)
-    ::operator delete (p, std::align_val_t{kPage});
-#else
-    munmap(p, round_up(n * sizeof(T)));
-#endif
+    big_blocks::give_back(p, round_up(n * sizeof(T)));
   }
   static std::size_t round_up(std::size_t bytes) { return (bytes + kPage - 1) / kPage * kPage; }
   template <class U>
@@ -107,7 +101,7 @@ UninitializedHugeVector<T> zeroed_huge_vector(std::size_t n) {
   UninitializedHugeVector<T> v;
   v.reserve(n);
   v.resize(n);
-  if (v.capacity() * sizeof(T) < HugePageAllocator<T>::kPage) {
+  if (v.capacity() * sizeof(T) < HugePageAllocator<T>::kPage || !big_blocks::last_take_zero_filled()) {
     std::fill(v.begin(), v.end(), T{});
   } else {
     // A hash table is read at random before it is written: each page would fault twice (the shared
