@@ -100,35 +100,6 @@ struct Grid {
 // Two doubles in one SSE2 register (a GCC/Clang vector): one division instruction for both.
 using Pair = double __attribute__((vector_size(16)));
 
-// The centroid of the points `ids` (rows of p3) as the sum of the quotients p / n in the order of
-// the ids. The quotients come from packed divisions, x and y of one point in one and z of two points
-// in another: three divisions for two points instead of four, each quotient the same, bit for bit.
-// (Divisions, not products with 1 / n: a projected cell can be flat, and its faces' orientation then
-// hangs on the last bit, which the file must keep.)
-struct Centroid {
-  Pair xy{0, 0};
-  double z = 0;
-  Centroid(const double* p3, std::span<const std::uint32_t> ids) {
-    const double n = static_cast<double>(ids.size());
-    const Pair nn{n, n};
-    std::size_t i = 0;
-    for (; i + 1 < ids.size(); i += 2) {
-      const double* p = p3 + 3 * std::size_t{ids[i]};
-      const double* q = p3 + 3 * std::size_t{ids[i + 1]};
-      const Pair zz = Pair{p[2], q[2]} / nn;
-      xy += Pair{p[0], p[1]} / nn;
-      z += zz[0];
-      xy += Pair{q[0], q[1]} / nn;
-      z += zz[1];
-    }
-    if (i < ids.size()) {
-      const double* p = p3 + 3 * std::size_t{ids[i]};
-      xy += Pair{p[0], p[1]} / nn;
-      z += p[2] / n;
-    }
-  }
-};
-
 // Adds the closed 3-cell at `cell` as a VTK polyhedron with faces turned outwards (Newell normal
 // against the direction from the cell's centroid to the face's centroid). The face stream is
 // written in place, one resize per cell (its room is reserved by the caller).
@@ -137,7 +108,16 @@ void add_polyhedron(Grid<Index>& g, std::uint64_t domains, const PolyhedronCurso
                     const double* p3) {
   const auto corners = cell.corners();
   const auto faces = cell.faces();
-  const Centroid centre(p3, corners);
+  // The centroids as sums of quotients, x and y in one packed division (the quotients are the
+  // same, bit for bit, as one at a time).
+  const double n = static_cast<double>(corners.size());
+  Pair centre_xy{0, 0};
+  double centre_z = 0;
+  for (std::uint32_t v : corners) {
+    const double* p = p3 + 3 * std::size_t{v};
+    centre_xy += Pair{p[0], p[1]} / Pair{n, n};
+    centre_z += p[2] / n;
+  }
   g.add(kPolyhedron, 3, domains, corners);
   g.has_polyhedra = true;
   const std::size_t at = g.faces.size();
@@ -147,7 +127,12 @@ void add_polyhedron(Grid<Index>& g, std::uint64_t domains, const PolyhedronCurso
   for (std::uint32_t f : faces) {
     const auto cycle = polygons[f];
     const std::size_t k = cycle.size();
+    // (the divisions as they are: a projected cell can be flat, and its faces' orientation then
+    // hangs on the last bit, which the file must keep)
     std::array<double, 3> normal{0, 0, 0};
+    const double kd = static_cast<double>(k);
+    Pair mid_xy{0, 0};
+    double mid_z = 0;
     // (each corner read once: the end b of one side is the start a of the next)
     const double* first = p3 + 3 * std::size_t{cycle[0]};
     double a[3] = {first[0], first[1], first[2]};
@@ -157,13 +142,14 @@ void add_polyhedron(Grid<Index>& g, std::uint64_t domains, const PolyhedronCurso
       normal[0] += (a[1] - b[1]) * (a[2] + b[2]);
       normal[1] += (a[2] - b[2]) * (a[0] + b[0]);
       normal[2] += (a[0] - b[0]) * (a[1] + b[1]);
+      mid_xy += Pair{a[0], a[1]} / Pair{kd, kd};
+      mid_z += a[2] / kd;
       a[0] = b[0], a[1] = b[1], a[2] = b[2];
     }
-    const Centroid mid(p3, cycle);
     double dot = 0;  // (summed in the order x, y, z)
-    dot += normal[0] * (mid.xy[0] - centre.xy[0]);
-    dot += normal[1] * (mid.xy[1] - centre.xy[1]);
-    dot += normal[2] * (mid.z - centre.z);
+    dot += normal[0] * (mid_xy[0] - centre_xy[0]);
+    dot += normal[1] * (mid_xy[1] - centre_xy[1]);
+    dot += normal[2] * (mid_z - centre_z);
     // Reversed when dot < 0: c0, c(k−1), …, c1, corner j read from k − j instead of j. (An index,
     // not a branch: the sign follows the geometry, and a branch on it is mispredicted half the time.)
     const std::size_t reversed = -static_cast<std::size_t>(dot < 0);
