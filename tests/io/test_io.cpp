@@ -427,23 +427,43 @@ bool closed_by_counting(std::span<const std::uint32_t> faces, const Ragged& poly
   return std::all_of(uses.begin(), uses.end(), [](const auto& u) { return u.second == 2; });
 }
 
-// Every cell of every 3-level against the reference, with its corners.
-void expect_cursor_agrees(const CellComplex& cc, const Ragged& polygons, const std::string& what, int* open = nullptr) {
-  for (CellKind kind : {CellKind::interior, CellKind::boundary}) {
-    PolyhedronCursor cell(cc, kind, polygons);
-    ASSERT_EQ(cell.size(), cell_count(cc, kind, 3)) << what;
-    for (std::uint32_t c = 0; c < cell.size(); ++c) {
-      const bool closed = cell.load(c);
-      ASSERT_EQ(closed, closed_by_counting(cell.faces(), polygons)) << what << ": 3-cell " << c;
-      if (open) *open += closed ? 0 : 1;
-      if (!closed) continue;
-      std::set<std::uint32_t> corners;
-      for (std::uint32_t f : cell.faces()) corners.insert(polygons[f].begin(), polygons[f].end());
-      ASSERT_EQ(std::vector<std::uint32_t>(corners.begin(), corners.end()),
-                std::vector<std::uint32_t>(cell.corners().begin(), cell.corners().end()))
-          << what;
-    }
+// The complex with the first face of every seventh interior 3-cell taken away: open 3-cells whose
+// polygons are all closed (each a proper part of a convex polyhedron's boundary).
+CellComplex with_faces_taken_away(CellComplex cc) {
+  CellLevel& level = cc.interior[3];
+  IndexArray offsets, ids;
+  offsets.push_back(0);
+  for (std::uint32_t c = 0; c < level.size(); ++c) {
+    const auto facets = level.facets(c);
+    for (std::size_t i = c % 7 == 0 ? 1 : 0; i < facets.size(); ++i) ids.push_back(facets[i]);
+    offsets.push_back(static_cast<std::uint32_t>(ids.size()));
   }
+  level.facet_offsets = std::move(offsets), level.facet_ids = std::move(ids);
+  return cc;
+}
+
+// Every cell of every 3-level against the reference, with its corners. With `traced` (the cycles of
+// a traced complex, complete or cut at a limit: convex cells with some of their faces), the cursor
+// told the complex is complete too (Euler's count first) must give the same answers.
+void expect_cursor_agrees(const CellComplex& cc, const Ragged& polygons, const std::string& what, int* open = nullptr,
+                          bool traced = true) {
+  for (CellKind kind : {CellKind::interior, CellKind::boundary})
+    for (bool complete : {false, true}) {
+      if (complete && !traced) continue;
+      PolyhedronCursor cell(cc, kind, polygons, nullptr, complete);
+      ASSERT_EQ(cell.size(), cell_count(cc, kind, 3)) << what;
+      for (std::uint32_t c = 0; c < cell.size(); ++c) {
+        const bool closed = cell.load(c);
+        ASSERT_EQ(closed, closed_by_counting(cell.faces(), polygons)) << what << ": 3-cell " << c << ", " << complete;
+        if (open && !complete) *open += closed ? 0 : 1;
+        if (!closed) continue;
+        std::set<std::uint32_t> corners;
+        for (std::uint32_t f : cell.faces()) corners.insert(polygons[f].begin(), polygons[f].end());
+        ASSERT_EQ(std::vector<std::uint32_t>(corners.begin(), corners.end()),
+                  std::vector<std::uint32_t>(cell.corners().begin(), cell.corners().end()))
+            << what;
+      }
+    }
 }
 
 TEST(Polygons, PolyhedronCursorMatchesEdgeCounting) {
@@ -464,7 +484,7 @@ TEST(Polygons, PolyhedronCursorMatchesEdgeCounting) {
         damaged.push(cycle);
       }
       int open = 0;
-      expect_cursor_agrees(cc, damaged, c.name + ", damaged cycles", &open);
+      expect_cursor_agrees(cc, damaged, c.name + ", damaged cycles", &open, false);
       if (cc.manifold_dimension == 3) {
         EXPECT_GT(open, 0) << c.name;
       }
@@ -481,6 +501,10 @@ TEST(Polygons, PolyhedronCursorMatchesEdgeCounting) {
   const CellComplex cut = build_cell_complex(std::move(r));
   int open = 0;
   expect_cursor_agrees(cut, polygon_cycles(cut), "S^3 stopped at 300 simplices", &open);
+  EXPECT_GT(open, 0);
+  const CellComplex opened = with_faces_taken_away(trace(catalogue()[6]));
+  open = 0;
+  expect_cursor_agrees(opened, polygon_cycles(opened), "S^3 with faces taken away", &open);
   EXPECT_GT(open, 0);
 }
 
@@ -507,11 +531,13 @@ TEST(Polygons, PolyhedronCursorWithManyCorners) {
         if (cy.empty()) cy = {0, 1, 2};
       Ragged polygons;
       for (const auto& cy : cycles) polygons.push(cy);
-      PolyhedronCursor cursor(cc, CellKind::interior, polygons);
-      EXPECT_EQ(cursor.load(cell), !broken) << half << " " << broken;
-      EXPECT_EQ(closed_by_counting(cursor.faces(), polygons), !broken);
-      if (!broken) {
-        EXPECT_EQ(cursor.corners().size(), 2 * half);
+      for (bool complete : {false, true}) {  // (two pillows: V − E + F = 4, counted edge by edge)
+        PolyhedronCursor cursor(cc, CellKind::interior, polygons, nullptr, complete);
+        EXPECT_EQ(cursor.load(cell), !broken) << half << " " << broken << " " << complete;
+        EXPECT_EQ(closed_by_counting(cursor.faces(), polygons), !broken);
+        if (!broken) {
+          EXPECT_EQ(cursor.corners().size(), 2 * half);
+        }
       }
     }
 }
@@ -845,6 +871,36 @@ TEST(Vtu, SameBytesForAnyNumberOfWorkers) {
         EXPECT_TRUE(several.str() == one.str()) << c.name << ", " << workers << " workers, simplices " << simplices;
         EXPECT_TRUE(several_ids.str() == with_ids.str()) << c.name << ", " << workers << " workers, with ids";
       }
+    }
+  }
+}
+
+TEST(Vtu, CompleteTraceGivesTheSameBytesAsCheckingEveryCell) {
+  // Told that the trace is complete, the writer checks a 3-cell by Euler's count instead of edge by
+  // edge: the same file, for closed cells with and without boundary, and for a trace stopped at a
+  // limit or 3-cells with a face taken away, whose open cells are skipped either way.
+  const Triangulation t = Triangulation::coxeter(4).with_longest_edge(0.6);
+  const FunctionPtr f = sphere(3, 4, 1.0);
+  ImplicitOracle oracle(t, f, nullptr);
+  TraceOptions limit;
+  limit.max_simplices = 300;
+  TraceResult r = trace_manifold(t, oracle, {f->seed()}, limit);
+  ASSERT_EQ(r.status, TraceStatus::max_simplices_reached);
+  const CellComplex cut = build_cell_complex(std::move(r));
+  const CellComplex whole = trace(catalogue()[6]), cap = trace(catalogue()[7]);
+  const CellComplex opened = with_faces_taken_away(whole);
+  for (const auto& [name, cc] : {std::pair<const char*, const CellComplex*>{"S^3 in R^4", &whole},
+                                 {"cap of S^3 in R^4", &cap},
+                                 {"S^3 stopped at 300 simplices", &cut},
+                                 {"S^3 with faces taken away", &opened}}) {
+    const Projection projection = make_projection("", cc->ambient_dimension, {}, {});
+    for (bool simplices : {false, true}) {
+      std::ostringstream checked, trusted;
+      const WrittenCounts a = write_vtu(checked, *cc, projection, simplices, 1, false);
+      const WrittenCounts b = write_vtu(trusted, *cc, projection, simplices, 2, true);
+      EXPECT_TRUE(checked.str() == trusted.str()) << name << ", simplices " << simplices;
+      EXPECT_EQ(a.skipped, b.skipped) << name;
+      EXPECT_EQ(a.skipped > 0, cc == &cut || cc == &opened) << name;
     }
   }
 }

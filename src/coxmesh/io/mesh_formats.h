@@ -29,9 +29,10 @@ struct WrittenCounts {
 /// components); cell data "dimension" (UInt8) and "is_boundary" (UInt8). With `simplices`, polygons
 /// are written as their fan triangles (VTK_TRIANGLE) and polyhedra as tetrahedra (VTK_TETRA), split
 /// as in simplices.h. The 3-cells are put together on `threads` workers (0: all hardware threads);
-/// the bytes are the same for any number.
+/// the bytes are the same for any number. `complete`: the complex comes from a complete trace, so
+/// that its 3-cells need not be checked edge by edge (PolyhedronCursor); the bytes are the same.
 WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices = false,
-                        int threads = 1);
+                        int threads = 1, bool complete = false);
 
 /// The ids that the cells and vertices of a piece have in the whole complex (a piece of a .pvtu,
 /// written by one of several processes): per cell of each level, interior[j] and boundary[j] (its id

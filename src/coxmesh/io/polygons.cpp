@@ -198,12 +198,14 @@ Ragged oriented_polygon_cycles(const CellComplex& cc, const double* points3) {
   return polygons;
 }
 
-PolyhedronCursor::PolyhedronCursor(const CellComplex& cc, CellKind kind, const Ragged& polygons, const double* points3)
+PolyhedronCursor::PolyhedronCursor(const CellComplex& cc, CellKind kind, const Ragged& polygons, const double* points3,
+                                   bool complete)
     : level_(cell_level(cc, kind, 3)),
       kind_(kind),
       polygons_(polygons),
       n2_(cell_count(cc, CellKind::interior, 2)),
       as_listed_(level_ && kind == CellKind::interior && level_->boundary_facet.empty()),
+      complete_(complete),
       points3_(points3),
       seen_(level_ ? vertex_count(cc) : 0, 0) {}
 
@@ -238,6 +240,19 @@ bool PolyhedronCursor::load(std::uint32_t c) {
   // Vertex v's number among the corners, a new one when first met (seen_: the load's stamp and the
   // number, per vertex).
   const std::uint64_t stamp = ++loads_;
+  if (complete_) {
+    for (std::uint32_t f : faces_)
+      for (std::uint32_t v : polygons_[f]) {
+        std::uint64_t& seen = seen_[v];
+        if (seen >> 32 == stamp) continue;
+        seen = stamp << 32;
+        corners_.push_back(v);
+      }
+    // V − E + F = 2 with 2E = the incidences (an edge in two faces each).
+    if (2 * (corners_.size() + faces_.size()) != incidences_ + 4 && !closed_by_sorted_edges()) return false;
+    sort_few(corners_);
+    return true;
+  }
   const auto number = [&](std::uint32_t v) {
     std::uint64_t& seen = seen_[v];
     if (seen >> 32 != stamp) {

@@ -79,7 +79,12 @@ Ragged polyhedron_faces(const CellComplex& cc, CellKind kind, const Ragged& poly
 class PolyhedronCursor {
  public:
   /// points3: the vertices' coordinates (n × 3) the caller reads for each cell, fetched ahead too (may be null).
-  PolyhedronCursor(const CellComplex& cc, CellKind kind, const Ragged& polygons, const double* points3 = nullptr);
+  /// complete: the complex comes from a complete trace, so that its 3-cells are convex polyhedra with
+  /// all their faces. Then a cell is taken as closed when V − E + F = 2 (E: half the incidences), which
+  /// a proper part of a convex polyhedron's boundary never satisfies, instead of counting every edge;
+  /// only a cell that fails it is counted edge by edge. The answers are the same for such a complex.
+  PolyhedronCursor(const CellComplex& cc, CellKind kind, const Ragged& polygons, const double* points3 = nullptr,
+                   bool complete = false);
   std::uint32_t size() const { return level_ ? level_->size() : 0; }
   /// Moves to cell c (0 ≤ c < size(), best in increasing order); whether it is closed.
   bool load(std::uint32_t c);
@@ -98,6 +103,7 @@ class PolyhedronCursor {
   const Ragged& polygons_;
   std::uint32_t n2_;
   bool as_listed_;  // (interior cells with no boundary face: their face ids as the level lists them)
+  bool complete_;
   const double* points3_;
   std::span<const std::uint32_t> faces_;  // (the level's own list, or listed_faces_)
   std::vector<std::uint32_t> listed_faces_, corners_;

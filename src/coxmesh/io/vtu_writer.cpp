@@ -249,7 +249,7 @@ bool fits_int32(const CellComplex& cc, int p) {
 
 template <class Index>
 WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices,
-                           const VtuGlobalIds* ids, int threads) {
+                           const VtuGlobalIds* ids, int threads, bool complete) {
   const std::string index_type = sizeof(Index) == 4 ? "Int32" : "Int64";
   const int d = cc.ambient_dimension, m = cc.manifold_dimension;
   const ProjectedVertices projected(projection, cc);
@@ -388,7 +388,7 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
       cursors.reserve(2 * static_cast<std::size_t>(workers));
       for (int w = 0; w < workers; ++w)
         for (CellKind kind : {CellKind::interior, CellKind::boundary})
-          cursors.emplace_back(cc, kind, polygons, p3.data());
+          cursors.emplace_back(cc, kind, polygons, p3.data(), complete);
       if (workers == 1 || ranges.size() <= 1) {
         for (std::size_t r = 0; r < ranges.size(); ++r) add_range(r, 0);
       } else {
@@ -485,17 +485,17 @@ WrittenCounts write_vtu_as(std::ostream& os, const CellComplex& cc, const Projec
 }  // namespace
 
 WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices,
-                        int threads) {
+                        int threads, bool complete) {
   return fits_int32(cc, std::min(cc.manifold_dimension, 3))
-             ? write_vtu_as<std::int32_t>(os, cc, projection, simplices, nullptr, threads)
-             : write_vtu_as<std::int64_t>(os, cc, projection, simplices, nullptr, threads);
+             ? write_vtu_as<std::int32_t>(os, cc, projection, simplices, nullptr, threads, complete)
+             : write_vtu_as<std::int64_t>(os, cc, projection, simplices, nullptr, threads, complete);
 }
 
 WrittenCounts write_vtu(std::ostream& os, const CellComplex& cc, const Projection& projection, bool simplices,
                         const VtuGlobalIds& ids, int threads) {
   return fits_int32(cc, std::min(cc.manifold_dimension, 3))
-             ? write_vtu_as<std::int32_t>(os, cc, projection, simplices, &ids, threads)
-             : write_vtu_as<std::int64_t>(os, cc, projection, simplices, &ids, threads);
+             ? write_vtu_as<std::int32_t>(os, cc, projection, simplices, &ids, threads, false)
+             : write_vtu_as<std::int64_t>(os, cc, projection, simplices, &ids, threads, false);
 }
 
 }  // namespace coxmesh

@@ -101,7 +101,7 @@ WrittenCounts write_mesh(const std::string& path, MeshFormat format, const CellC
   write_file_atomically(path, [&](std::ostream& os) {
     switch (format) {
       case MeshFormat::vtu:
-        counts = write_vtu(os, cc, projection, options.simplices, options.threads);
+        counts = write_vtu(os, cc, projection, options.simplices, options.threads, options.native.complete);
         break;
       case MeshFormat::off:
       case MeshFormat::noff:
