@@ -427,6 +427,18 @@ bool closed_by_counting(std::span<const std::uint32_t> faces, const Ragged& poly
   return std::all_of(uses.begin(), uses.end(), [](const auto& u) { return u.second == 2; });
 }
 
+// S³ ⊂ R⁴ traced until it reaches 300 simplices: open cells at the edge of the trace.
+CellComplex sphere3_stopped_at_300() {
+  const Triangulation t = Triangulation::coxeter(4).with_longest_edge(0.6);
+  const FunctionPtr f = sphere(3, 4, 1.0);
+  ImplicitOracle oracle(t, f, nullptr);
+  TraceOptions limit;
+  limit.max_simplices = 300;
+  TraceResult r = trace_manifold(t, oracle, {f->seed()}, limit);
+  EXPECT_EQ(r.status, TraceStatus::max_simplices_reached);
+  return build_cell_complex(std::move(r));
+}
+
 // The complex with the first face of every seventh interior 3-cell taken away: open 3-cells whose
 // polygons are all closed (each a proper part of a convex polyhedron's boundary).
 CellComplex with_faces_taken_away(CellComplex cc) {
@@ -491,14 +503,7 @@ TEST(Polygons, PolyhedronCursorMatchesEdgeCounting) {
     }
   }
   // A trace stopped at a limit leaves open cells at its edge.
-  const Triangulation t = Triangulation::coxeter(4).with_longest_edge(0.6);
-  const FunctionPtr f = sphere(3, 4, 1.0);
-  ImplicitOracle oracle(t, f, nullptr);
-  TraceOptions limit;
-  limit.max_simplices = 300;
-  TraceResult r = trace_manifold(t, oracle, {f->seed()}, limit);
-  ASSERT_EQ(r.status, TraceStatus::max_simplices_reached);
-  const CellComplex cut = build_cell_complex(std::move(r));
+  const CellComplex cut = sphere3_stopped_at_300();
   int open = 0;
   expect_cursor_agrees(cut, polygon_cycles(cut), "S^3 stopped at 300 simplices", &open);
   EXPECT_GT(open, 0);
@@ -879,14 +884,7 @@ TEST(Vtu, CompleteTraceGivesTheSameBytesAsCheckingEveryCell) {
   // Told that the trace is complete, the writer checks a 3-cell by Euler's count instead of edge by
   // edge: the same file, for closed cells with and without boundary, and for a trace stopped at a
   // limit or 3-cells with a face taken away, whose open cells are skipped either way.
-  const Triangulation t = Triangulation::coxeter(4).with_longest_edge(0.6);
-  const FunctionPtr f = sphere(3, 4, 1.0);
-  ImplicitOracle oracle(t, f, nullptr);
-  TraceOptions limit;
-  limit.max_simplices = 300;
-  TraceResult r = trace_manifold(t, oracle, {f->seed()}, limit);
-  ASSERT_EQ(r.status, TraceStatus::max_simplices_reached);
-  const CellComplex cut = build_cell_complex(std::move(r));
+  const CellComplex cut = sphere3_stopped_at_300();
   const CellComplex whole = trace(catalogue()[6]), cap = trace(catalogue()[7]);
   const CellComplex opened = with_faces_taken_away(whole);
   for (const auto& [name, cc] : {std::pair<const char*, const CellComplex*>{"S^3 in R^4", &whole},
