@@ -70,6 +70,31 @@ void unmap(void* p, std::size_t bytes) {
 #endif
 }
 
+// A block of `bytes` made of kept pages, or null when none are kept: the smallest kept block that
+// holds it (no system call), else a fresh mapping into which kept pages move (mremap moves page
+// tables, 2 MiB at a time where both ends are aligned, no copy), the rest of it new pages.
+char* from_kept(Kept& k, std::size_t bytes) {
+  if (k.blocks.empty()) return nullptr;
+  Block* fit = nullptr;
+  for (Block& b : k.blocks)
+    if (b.bytes >= bytes && (fit == nullptr || b.bytes < fit->bytes)) fit = &b;
+  char* p = fit != nullptr ? fit->begin : static_cast<char*>(map_fresh(bytes));
+  for (std::size_t filled = 0; filled < bytes && !k.blocks.empty();) {
+    Block& b = fit != nullptr ? *fit : k.blocks.back();
+    const std::size_t n = std::min(b.bytes, bytes - filled);
+    if (fit == nullptr && mremap(b.begin, n, n, MREMAP_MAYMOVE | MREMAP_FIXED, p + filled) == MAP_FAILED) break;
+    filled += n;
+    b.begin += n;
+    b.bytes -= n;
+    k.kept -= n;
+    if (b.bytes == 0) {
+      b = k.blocks.back();
+      k.blocks.pop_back();
+    }
+  }
+  return p;
+}
+
 }  // namespace
 
 void* take(std::size_t bytes) {
@@ -79,42 +104,9 @@ void* take(std::size_t bytes) {
   }
   Kept& k = kept();
   std::lock_guard lock(k.mutex);
-  if (!k.blocks.empty()) {
-    zero_filled = false;
-    Block* fit = nullptr;  // (the smallest kept block that holds `bytes`: no system call)
-    for (Block& b : k.blocks)
-      if (b.bytes >= bytes && (fit == nullptr || b.bytes < fit->bytes)) fit = &b;
-    if (fit != nullptr) {
-      char* p = fit->begin;
-      fit->begin += bytes;
-      fit->bytes -= bytes;
-      k.kept -= bytes;
-      if (fit->bytes == 0) {
-        *fit = k.blocks.back();
-        k.blocks.pop_back();
-      }
-      k.live += bytes;
-      return p;
-    }
-    // None holds it: the kept pages move into a fresh mapping (mremap moves page tables, 2 MiB at
-    // a time where both ends are aligned, no copy), which is rounded up with new pages.
-    char* p = static_cast<char*>(map_fresh(bytes));
-    std::size_t filled = 0;
-    while (filled < bytes && !k.blocks.empty()) {
-      Block& b = k.blocks.back();
-      const std::size_t n = std::min(b.bytes, bytes - filled);
-      if (mremap(b.begin, n, n, MREMAP_MAYMOVE | MREMAP_FIXED, p + filled) == MAP_FAILED) break;
-      filled += n;
-      b.begin += n;
-      b.bytes -= n;
-      k.kept -= n;
-      if (b.bytes == 0) k.blocks.pop_back();
-    }
-    k.live += bytes;
-    return p;
-  }
-  void* p = map_fresh(bytes);
-  zero_filled = true;
+  char* p = from_kept(k, bytes);
+  zero_filled = p == nullptr;
+  if (p == nullptr) p = static_cast<char*>(map_fresh(bytes));
   k.live += bytes;
   return p;
 }
