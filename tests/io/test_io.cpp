@@ -10,6 +10,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 #include "coxmesh/cell_complex/cell_complex.h"
 #include "coxmesh/cell_complex/topology.h"
@@ -837,6 +838,26 @@ TEST(AtomicFile, ErrorsLeaveThePreviousFileUntouched) {
   for (std::size_t i = 0; i < big.size(); ++i) big[i] = static_cast<char>(i * 2654435761u >> 24);
   write_file_atomically(target.string(), [&](std::ostream& os) { os << "head" << big << "tail"; });
   EXPECT_TRUE(read_text(target) == "head" + big + "tail");
+  // Past its first 4 MiB a file goes out with direct I/O in whole 4 KiB blocks: every size around
+  // those, written in one block, in pieces that straddle them, or flushed at an odd offset, arrives
+  // whole (a lost or doubled tail would show here).
+  constexpr std::size_t kMiB = std::size_t{1} << 20;
+  for (const std::size_t size : {std::size_t{0}, std::size_t{4095}, std::size_t{4097}, 4 * kMiB - 1, 4 * kMiB,
+                                 4 * kMiB + 1, 4 * kMiB + 4096, 9 * kMiB + 123}) {
+    const std::string_view data(big.data(), size);
+    write_file_atomically(target.string(), [&](std::ostream& os) { os.write(data.data(), data.size()); });
+    EXPECT_TRUE(read_text(target) == data) << size << " bytes in one block";
+    write_file_atomically(target.string(), [&](std::ostream& os) {
+      for (std::size_t at = 0; at < size; at += 1000003) {
+        os.write(data.data() + at, std::min<std::size_t>(1000003, size - at));
+        if (at % 3 == 0) os.flush();
+      }
+      for (std::size_t i = 0; i < 5000 && size > 0; ++i) os.put(data[i % size]);
+    });
+    std::string pieces(data);
+    for (std::size_t i = 0; i < 5000 && size > 0; ++i) pieces += data[i % size];
+    EXPECT_TRUE(read_text(target) == pieces) << size << " bytes in pieces";
+  }
   // Success replaces the content.
   write_file_atomically(target.string(), [](std::ostream& os) { os << "new"; });
   EXPECT_EQ(read_text(target), "new");

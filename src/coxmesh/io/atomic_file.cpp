@@ -6,8 +6,11 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <memory>
+#include <new>
 #include <random>
 #include <streambuf>
 #include <vector>
@@ -22,47 +25,92 @@ namespace {
   throw InputError("cannot write " + path + ": " + std::strerror(error));
 }
 
-// An output stream buffer on a POSIX file descriptor (64 KiB buffer); remembers the first errno.
-// With `start_writeback` (a regular file to be fsynced), a big block goes out in slices, each
-// handed to the disk as soon as it is in the page cache: the writeback then overlaps the rest of
-// the writing instead of all waiting for the final fsync.
+// An output stream buffer on a POSIX file descriptor; remembers the first errno.
+//
+// A regular file about to be fsynced (`to_disk`) goes out, past its first buffer, with direct I/O
+// (O_DIRECT): it must reach the disk anyway, so a copy in the page cache would only cost a copy
+// of every byte into freshly allocated pages (slow to touch on virtual machines that hand freed
+// memory back to their host) and evict what other programs cache. Direct I/O wants the buffer,
+// the file offsets and the sizes aligned; kAlign covers every logical block size in use, and the
+// unaligned tail is written last without it. A file system that refuses direct I/O gets buffered
+// writes, a big block then going out in slices, each handed to the disk as soon as it is in the
+// page cache, so that the writeback overlaps the rest of the writing instead of all waiting for
+// the fsync.
 class FdBuffer final : public std::streambuf {
  public:
-  explicit FdBuffer(int fd, bool start_writeback = false)
-      : fd_(fd), buffer_(1 << 16), start_writeback_(start_writeback) {
-    setp(buffer_.data(), buffer_.data() + buffer_.size());
+  explicit FdBuffer(int fd, bool to_disk = false)
+      : fd_(fd),
+        to_disk_(to_disk),
+        size_(to_disk ? kStagingBytes : kPlainBytes),
+        buffer_(static_cast<char*>(std::aligned_alloc(kAlign, size_))) {
+    if (!buffer_) throw std::bad_alloc();
+    setp(buffer_.get(), buffer_.get() + size_);
   }
   int error() const { return error_; }
+  // Writes every byte still held (the last, unaligned ones without direct I/O). Call once, last.
+  bool finish() { return drain(true); }
 
  protected:
   int_type overflow(int_type c) override {
-    if (!flush_buffer()) return traits_type::eof();
+    if (to_disk_ && !direct_tried_) start_direct();
+    if (!drain(false)) return traits_type::eof();
     if (!traits_type::eq_int_type(c, traits_type::eof())) {
       *pptr() = traits_type::to_char_type(c);
       pbump(1);
     }
     return traits_type::not_eof(c);
   }
-  int sync() override { return flush_buffer() ? 0 : -1; }
-  // A block at least as big as the buffer goes to the file as it is, not through the buffer.
+  // (with direct I/O, up to kAlign - 1 bytes stay until more come or finish())
+  int sync() override { return drain(false) ? 0 : -1; }
   std::streamsize xsputn(const char* s, std::streamsize n) override {
-    if (n < static_cast<std::streamsize>(buffer_.size())) return std::streambuf::xsputn(s, n);
-    if (!flush_buffer()) return 0;
+    const auto size = static_cast<std::size_t>(n);
+    if (to_disk_ && !direct_tried_ && held() + size >= size_) start_direct();
+    if (direct_ || size < size_) return std::streambuf::xsputn(s, n);
+    // A block at least as big as the buffer goes to the file as it is, not through the buffer.
+    if (!drain(true)) return 0;
     constexpr std::size_t kSlice = std::size_t{8} << 20;
-    for (std::size_t done = 0, size = static_cast<std::size_t>(n); done < size;) {
-      const std::size_t slice = start_writeback_ ? std::min(kSlice, size - done) : size - done;
+    for (std::size_t done = 0; done < size;) {
+      const std::size_t slice = to_disk_ ? std::min(kSlice, size - done) : size - done;
       if (!write_all(s + done, slice)) return 0;
       done += slice;
       // (a hint: an error here shows again at fsync)
-      if (start_writeback_) ::sync_file_range(fd_, written_ - slice, slice, SYNC_FILE_RANGE_WRITE);
+      if (to_disk_) ::sync_file_range(fd_, written_ - slice, slice, SYNC_FILE_RANGE_WRITE);
     }
     return n;
   }
 
  private:
-  bool flush_buffer() {
-    if (!write_all(pbase(), static_cast<std::size_t>(pptr() - pbase()))) return false;
-    setp(buffer_.data(), buffer_.data() + buffer_.size());
+  static constexpr std::size_t kAlign = 4096;
+  static constexpr std::size_t kStagingBytes = std::size_t{4} << 20;
+  static constexpr std::size_t kPlainBytes = std::size_t{1} << 16;
+
+  std::size_t held() const { return static_cast<std::size_t>(pptr() - pbase()); }
+
+  void start_direct() {
+    direct_tried_ = true;
+    const int flags = ::fcntl(fd_, F_GETFL);
+    direct_ = flags >= 0 && ::fcntl(fd_, F_SETFL, flags | O_DIRECT) == 0;
+  }
+  void stop_direct() {
+    if (!direct_) return;
+    direct_ = false;
+    if (const int flags = ::fcntl(fd_, F_GETFL); flags >= 0) ::fcntl(fd_, F_SETFL, flags & ~O_DIRECT);
+  }
+
+  // Writes the bytes held: with direct I/O only whole blocks unless `all`; the rest moves to the
+  // front of the buffer (whose start stays aligned).
+  bool drain(bool all) {
+    const std::size_t n = held();
+    std::size_t done = direct_ ? n / kAlign * kAlign : n;
+    if (!write_all(pbase(), done)) return false;
+    if (done < n && all) {
+      stop_direct();
+      if (!write_all(pbase() + done, n - done)) return false;
+      done = n;
+    }
+    std::memmove(buffer_.get(), pbase() + done, n - done);
+    setp(buffer_.get(), buffer_.get() + size_);
+    pbump(static_cast<int>(n - done));
     return true;
   }
   bool write_all(const char* p, std::size_t n) {
@@ -70,6 +118,11 @@ class FdBuffer final : public std::streambuf {
       const ssize_t w = ::write(fd_, p, n);
       if (w < 0) {
         if (errno == EINTR) continue;
+        // (a file system may take O_DIRECT at fcntl and refuse a write; the same write buffered)
+        if (errno == EINVAL && direct_) {
+          stop_direct();
+          continue;
+        }
         if (!error_) error_ = errno;
         return false;
       }
@@ -80,9 +133,15 @@ class FdBuffer final : public std::streambuf {
     return true;
   }
 
+  struct Free {
+    void operator()(char* p) const { std::free(p); }
+  };
   int fd_;
-  std::vector<char> buffer_;
-  bool start_writeback_;
+  bool to_disk_;
+  bool direct_tried_ = false;
+  bool direct_ = false;
+  std::size_t size_;
+  std::unique_ptr<char, Free> buffer_;
   off_t written_ = 0;  // (bytes written so far: the offset of the next)
   int error_ = 0;
 };
@@ -93,8 +152,7 @@ void write_to_descriptor(const std::string& path, int fd, const std::function<vo
   FdBuffer buffer(fd);
   std::ostream os(&buffer);
   write(os);
-  os.flush();
-  if (!os) fail(path, buffer.error() ? buffer.error() : EIO);
+  if (!os || !buffer.finish()) fail(path, buffer.error() ? buffer.error() : EIO);
 }
 
 // The file a path names once every symbolic link is followed (it need not exist: a dangling link
@@ -161,8 +219,7 @@ void write_file_atomically(const std::string& path, const std::function<void(std
     FdBuffer buffer(fd, true);
     std::ostream os(&buffer);
     write(os);
-    os.flush();
-    if (!os) fail(path, buffer.error() ? buffer.error() : EIO);
+    if (!os || !buffer.finish()) fail(path, buffer.error() ? buffer.error() : EIO);
     if (::fsync(fd) != 0) fail(path, errno);
     const int closed = ::close(fd);
     fd = -1;
