@@ -221,7 +221,7 @@ TEST(Pivoting, PipelineAsksAsOtherTransverseFacet) {
               walk::other_transverse_facet(oracle, pivots, tau, tau_key, arrival, *mu, classifier(asked_one));
           walk::PendingCofacet p;
           walk::Found piped{walk::Kind::miss, 0};
-          if (walk::take_cofacet(oracle, pivots, tau, tau_key, arrival, *mu, p)) {
+          if (walk::take_cofacet(oracle, pivots, tau, walk::ArrivalVertex<>(tau_key, arrival, tau.d), *mu, p)) {
             if (walk::guess_other_facet(oracle, pivots, p)) {
               ++guessed;
               std::uint32_t key[packed_words(kMaxDimension)];

@@ -142,10 +142,6 @@ bool take_cofacet(IntersectionOracle& oracle, bool pivots, const Simplex& tau, c
   if (pivots) oracle.prefetch_pivot(p.v);
   return true;
 }
-inline bool take_cofacet(IntersectionOracle& oracle, bool pivots, const Simplex& tau, const std::uint32_t* tau_key,
-                         std::uint64_t arrival, const Simplex& mu, PendingCofacet& p) {
-  return take_cofacet(oracle, pivots, tau, ArrivalVertex<>(tau_key, arrival, tau.d), mu, p);
-}
 
 // Second step: false when the oracle makes no guess.
 template <int kD = 0>
