@@ -332,18 +332,20 @@ void send_to_ranges(TopologyRanges& ranges, std::vector<std::uint64_t>& incidenc
     const std::size_t base = ranges.offsets.size() - 1, entries = in.size() / (2 * sizeof(std::uint32_t));
     std::vector<std::uint32_t>& offsets = ranges.offsets;
     offsets.resize(base + n + 2, 0);
-    std::vector<std::uint32_t> words(2 * entries);
-    if (entries > 0) std::memcpy(words.data(), in.data(), in.size());
+    const auto word = [&](std::size_t i) {
+      std::uint32_t x;
+      std::memcpy(&x, in.data() + i * sizeof x, sizeof x);
+      return x;
+    };
     for (std::size_t k = 0; k < entries; ++k) {
-      const std::uint64_t u = words[2 * k] - lo;
+      const std::uint64_t u = word(2 * k) - lo;
       if (u >= n) throw std::logic_error("an incidence sent to the rank that does not hold its cell's range");
       ++offsets[base + 2 + u];
     }
     offsets[base + 1] = offsets[base];
     for (std::size_t i = base + 2; i < offsets.size(); ++i) offsets[i] += offsets[i - 1];
     ranges.facets.resize(ranges.facets.size() + entries);
-    for (std::size_t k = 0; k < entries; ++k)
-      ranges.facets[offsets[base + 1 + (words[2 * k] - lo)]++] = words[2 * k + 1];
+    for (std::size_t k = 0; k < entries; ++k) ranges.facets[offsets[base + 1 + (word(2 * k) - lo)]++] = word(2 * k + 1);
     offsets.pop_back();
     for (std::size_t i = base; i < base + n; ++i) {
       const auto from = ranges.facets.begin() + offsets[i], to = ranges.facets.begin() + offsets[i + 1];
@@ -351,6 +353,9 @@ void send_to_ranges(TopologyRanges& ranges, std::vector<std::uint64_t>& incidenc
     }
   });
 }
+
+// Frees a level's keys, keeping its size: neither the topology nor a mesh writer reads a key.
+void release_keys(CellLevel& level) { level.simplices = PackedKeyIndex::without_keys(level.simplices.size()); }
 
 // A level without facets (the vertex cells) in `ranges`: its range's cells, with none.
 void add_empty_range(TopologyRanges& ranges, std::uint64_t size, Communicator& comm) {
@@ -518,6 +523,10 @@ CellComplexPart build_cell_complex_distributed(TracePart&& trace, Communicator& 
       numbered(boundary_start, size);
     }
     if (j - 1 < static_cast<int>(cc.boundary.size())) cc.boundary[j - 1].simplices.release_index();
+    if (to_ranges) {  // (the keys of the levels below have served: the topology reads none)
+      release_keys(cc.interior[j - 1]);
+      if (j - 1 < static_cast<int>(cc.boundary.size())) release_keys(cc.boundary[j - 1]);
+    }
   }
   if (!has_boundary) {  // empty levels, uniform shape
     cc.boundary.resize(std::max(m, 0));
@@ -525,7 +534,7 @@ CellComplexPart build_cell_complex_distributed(TracePart&& trace, Communicator& 
     part.boundary_sizes.resize(cc.boundary.size());
   }
   for (auto& l : cc.boundary)
-    if (l.simplices.words() != words) l.simplices = PackedKeyIndex(words);
+    if (l.size() == 0 && l.simplices.words() != words) l.simplices = PackedKeyIndex(words);  // (released keys stay so)
   for (auto* levels : {&cc.interior, &cc.boundary})
     for (CellLevel& l : *levels) l.simplices.release_index();
   return part;
@@ -712,9 +721,6 @@ struct Halo {
   std::vector<std::uint32_t> ids, facet_offsets{0}, facets, boundary_facet;
   std::vector<double> rows;
 };
-
-// Frees a level's keys, keeping its size: neither the topology nor a mesh writer reads a key.
-void release_keys(CellLevel& level) { level.simplices = PackedKeyIndex::without_keys(level.simplices.size()); }
 
 }  // namespace
 
