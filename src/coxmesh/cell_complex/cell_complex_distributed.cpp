@@ -303,7 +303,10 @@ void send_to_ranges(TopologyRanges& ranges, std::vector<std::uint64_t>& incidenc
   agreed(comm, [&] {
     std::vector<int> range(ids.size());  // (of each cell here)
     std::vector<std::size_t> records(ranks, 0);
-    for (std::size_t c = 0; c < ids.size(); ++c) range[c] = range_rank(ids[c], size, ranks);
+    std::vector<std::uint64_t> ends(ranks - 1);  // (of the ranges but the last: a search, no division per cell)
+    for (int r = 0; r + 1 < ranks; ++r) ends[r] = range_start(size, r + 1, ranks);
+    for (std::size_t c = 0; c < ids.size(); ++c)
+      range[c] = static_cast<int>(std::upper_bound(ends.begin(), ends.end(), std::uint64_t{ids[c]}) - ends.begin());
     for (const std::uint64_t e : incidences) ++records[range[e >> 32]];
     for (std::size_t c = 0; c < boundary_facet.size(); ++c) records[range[c]] += boundary_facet[c] != CellLevel::kNone;
     std::vector<std::uint32_t*> to(ranks);
