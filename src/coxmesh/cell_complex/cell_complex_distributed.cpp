@@ -195,16 +195,17 @@ struct Arrivals {
 
 CellLevel ordered_level(Arrivals& a, const std::vector<std::uint32_t>& global, std::vector<std::uint32_t>& ids,
                         std::vector<double>* data);
-CellLevel level_as_arrived(Arrivals& a, std::vector<std::uint32_t>& global, std::vector<std::uint32_t>& ids);
+CellLevel level_as_arrived(Arrivals& a, std::vector<std::uint32_t>& global, std::vector<std::uint32_t>& ids,
+                           std::vector<std::uint64_t>& incidences);
 
 // The level that `arrivals` and the messages `out` make, settled on each owner: numbered by the
 // cells' smallest discovery keys (prev_size: the size of the level the keys' ids are from), in
-// global order here unless `in_order` is false (then as they arrived), with their facets and the
-// extra values of the smallest key in `data` (in global order only). The level's keys come without
-// a hash table (reindex() builds it).
+// global order here with their facets, or, given `incidences`, as they arrived, their incidences
+// ((cell here) << 32 | facet) handed out instead; the extra values of the smallest key in `data`
+// (in global order only). The level's keys come without a hash table (reindex() builds it).
 CellLevel settle(Arrivals& arrivals, std::vector<std::vector<std::byte>>& out, std::uint64_t prev_size,
                  Communicator& comm, std::vector<std::uint32_t>& ids, std::uint64_t& size, std::vector<double>* data,
-                 bool in_order = true) {
+                 std::vector<std::uint64_t>* incidences = nullptr) {
   std::vector<std::size_t> counts;
   std::vector<std::byte> in = comm.exchange(out, counts);
   out.clear();
@@ -229,7 +230,8 @@ CellLevel settle(Arrivals& arrivals, std::vector<std::vector<std::byte>>& out, s
   size = number_by_keys(arrivals.first, prev_size, comm, global);
   CellLevel level;
   agreed(comm, [&] {
-    level = in_order ? ordered_level(arrivals, global, ids, data) : level_as_arrived(arrivals, global, ids);
+    level =
+        incidences ? level_as_arrived(arrivals, global, ids, *incidences) : ordered_level(arrivals, global, ids, data);
   });
   return level;
 }
@@ -272,18 +274,96 @@ void set_facets(CellLevel& level, std::uint32_t n, std::vector<std::uint64_t>& i
   std::vector<std::uint64_t>().swap(incidences);
 }
 
-// The cells that arrived here as they arrived, with their global ids (`global`, taken) and facets:
-// when no one reads this rank's level in global order (without a file, the topology places each
-// cell by its id), the reordering of ordered_level is spared (a sort and a copy of the level).
-CellLevel level_as_arrived(Arrivals& a, std::vector<std::uint32_t>& global, std::vector<std::uint32_t>& ids) {
+// The cells that arrived here as they arrived, with their global ids (`global`, taken), and their
+// incidences for send_to_ranges: when no one reads this rank's level in global order (without a
+// file, the topology reads each cell's facets in its range), neither the reordering of
+// ordered_level (a sort and a copy of the level) nor facet lists here are needed.
+CellLevel level_as_arrived(Arrivals& a, std::vector<std::uint32_t>& global, std::vector<std::uint32_t>& ids,
+                           std::vector<std::uint64_t>& incidences) {
   a.found.release_index();
   CellLevel level;
-  const std::uint32_t n = a.found.size();
   level.simplices = std::move(a.found);
   a.found = PackedKeyIndex(level.simplices.words());
   ids = std::move(global);
-  set_facets(level, n, a.incidences, [](std::uint64_t c) { return static_cast<std::uint32_t>(c); });
+  incidences = std::move(a.incidences);
   return level;
+}
+
+// Appends to `ranges` this rank's range of a level of `size` cells just numbered (ids: of the cells
+// here; incidences: (cell here) << 32 | facet's id in its level, `below` the first id of that level
+// over all levels; the boundary facets' level starts at `boundary_below`): each incidence goes to
+// the rank of its cell's range as (id, facet) in one exchange, and the receiving rank lists them
+// by cell. Sent as the level is numbered, not as facet lists from its owners: the lists are made
+// once, where the topology reads them. Collective.
+void send_to_ranges(TopologyRanges& ranges, std::vector<std::uint64_t>& incidences,
+                    const std::vector<std::uint32_t>& ids, std::uint64_t size, std::uint32_t below,
+                    const IndexArray& boundary_facet, std::uint32_t boundary_below, Communicator& comm) {
+  const int ranks = comm.size();
+  std::vector<std::vector<std::byte>> out(ranks);
+  agreed(comm, [&] {
+    std::vector<int> range(ids.size());  // (of each cell here)
+    std::vector<std::size_t> records(ranks, 0);
+    std::vector<std::uint64_t> ends(ranks - 1);  // (of the ranges but the last: a search, no division per cell)
+    for (int r = 0; r + 1 < ranks; ++r) ends[r] = range_start(size, r + 1, ranks);
+    for (std::size_t c = 0; c < ids.size(); ++c)
+      range[c] = static_cast<int>(std::upper_bound(ends.begin(), ends.end(), std::uint64_t{ids[c]}) - ends.begin());
+    for (const std::uint64_t e : incidences) ++records[range[e >> 32]];
+    for (std::size_t c = 0; c < boundary_facet.size(); ++c) records[range[c]] += boundary_facet[c] != CellLevel::kNone;
+    std::vector<std::uint32_t*> to(ranks);
+    for (int r = 0; r < ranks; ++r) {
+      out[r].resize(records[r] * 2 * sizeof(std::uint32_t));
+      to[r] = reinterpret_cast<std::uint32_t*>(out[r].data());  // (operator new: aligned)
+    }
+    for (const std::uint64_t e : incidences) {
+      const std::size_t c = e >> 32;
+      std::uint32_t*& w = to[range[c]];
+      *w++ = ids[c], *w++ = below + static_cast<std::uint32_t>(e);
+    }
+    for (std::size_t c = 0; c < boundary_facet.size(); ++c)
+      if (boundary_facet[c] != CellLevel::kNone) {
+        std::uint32_t*& w = to[range[c]];
+        *w++ = ids[c], *w++ = boundary_below + boundary_facet[c];
+      }
+  });
+  std::vector<std::uint64_t>().swap(incidences);
+  std::vector<std::size_t> counts;
+  const std::vector<std::byte> in = comm.exchange(out, counts);
+  out = {};
+  agreed(comm, [&] {
+    // (a counting sort by cell: counts one place ahead, then starts, then ends as the facets go in)
+    const std::uint64_t lo = range_start(size, comm.rank(), ranks), n = range_start(size, comm.rank() + 1, ranks) - lo;
+    const std::size_t base = ranges.offsets.size() - 1, entries = in.size() / (2 * sizeof(std::uint32_t));
+    std::vector<std::uint32_t>& offsets = ranges.offsets;
+    offsets.resize(base + n + 2, 0);
+    const auto word = [&](std::size_t i) {
+      std::uint32_t x;
+      std::memcpy(&x, in.data() + i * sizeof x, sizeof x);
+      return x;
+    };
+    for (std::size_t k = 0; k < entries; ++k) {
+      const std::uint64_t u = word(2 * k) - lo;
+      if (u >= n) throw std::logic_error("an incidence sent to the rank that does not hold its cell's range");
+      ++offsets[base + 2 + u];
+    }
+    offsets[base + 1] = offsets[base];
+    for (std::size_t i = base + 2; i < offsets.size(); ++i) offsets[i] += offsets[i - 1];
+    ranges.facets.resize(ranges.facets.size() + entries);
+    for (std::size_t k = 0; k < entries; ++k) ranges.facets[offsets[base + 1 + (word(2 * k) - lo)]++] = word(2 * k + 1);
+    offsets.pop_back();
+    for (std::size_t i = base; i < base + n; ++i) {
+      const auto from = ranges.facets.begin() + offsets[i], to = ranges.facets.begin() + offsets[i + 1];
+      if (!std::is_sorted(from, to)) std::sort(from, to);
+    }
+  });
+}
+
+// Frees a level's keys, keeping its size: neither the topology nor a mesh writer reads a key.
+void release_keys(CellLevel& level) { level.simplices = PackedKeyIndex::without_keys(level.simplices.size()); }
+
+// A level without facets (the vertex cells) in `ranges`: its range's cells, with none.
+void add_empty_range(TopologyRanges& ranges, std::uint64_t size, Communicator& comm) {
+  const std::uint64_t n = range_start(size, comm.rank() + 1, comm.size()) - range_start(size, comm.rank(), comm.size());
+  ranges.offsets.resize(ranges.offsets.size() + n, ranges.offsets.back());
 }
 
 // The cells that arrived here in global order (by their smallest keys, whose ranks `global` holds),
@@ -324,7 +404,8 @@ CellLevel ordered_level(Arrivals& a, const std::vector<std::uint32_t>& global, s
 // Level j from this rank's part of level j − 1 (next_level_plain): the l-cofaces of each cell's
 // simplex go to their owners with the cell's global id and their place among its cofaces.
 CellLevel next_level(const CellLevel& prev, const std::vector<std::uint32_t>& prev_ids, std::uint64_t prev_size, int d,
-                     int l, Communicator& comm, std::vector<std::uint32_t>& ids, std::uint64_t& size, bool in_order) {
+                     int l, Communicator& comm, std::vector<std::uint32_t>& ids, std::uint64_t& size,
+                     std::vector<std::uint64_t>* incidences) {
   const int words = packed_words(d), ranks = comm.size();
   std::vector<std::vector<std::byte>> out(ranks);
   Arrivals arrivals(words, 0, true);
@@ -355,7 +436,7 @@ CellLevel next_level(const CellLevel& prev, const std::vector<std::uint32_t>& pr
       }
     });
   });
-  return settle(arrivals, out, prev_size, comm, ids, size, nullptr, in_order);
+  return settle(arrivals, out, prev_size, comm, ids, size, nullptr, incidences);
 }
 
 }  // namespace
@@ -372,6 +453,19 @@ CellComplexPart build_cell_complex_distributed(TracePart&& trace, Communicator& 
   cc.vertices = std::move(trace.points);
   part.interior_ids = {std::move(trace.ids)};
   part.interior_sizes = {trace.size};
+  // Without global order, each level's incidences go to the topology's ranges as it is numbered;
+  // the levels come in the order of the ranges (interior j, then boundary j), each starting where
+  // the one before ended.
+  std::vector<std::uint64_t> incidences, *const to_ranges = in_global_order ? nullptr : &incidences;
+  if (to_ranges) part.ranges.emplace();
+  std::uint64_t next_start = 0;
+  std::vector<std::uint32_t> interior_start, boundary_start;  // (the first id of each level over all levels)
+  const auto numbered = [&](std::vector<std::uint32_t>& starts, std::uint64_t size) {
+    starts.push_back(static_cast<std::uint32_t>(next_start));
+    next_start += size;
+  };
+  numbered(interior_start, trace.size);
+  if (to_ranges) add_empty_range(*part.ranges, trace.size, comm);
   bool has_boundary = false;
   if (m >= 1) {
     // S_∂ at the owners of its (k+1)-simplices: the first meeting (smallest key) numbers it and
@@ -390,8 +484,11 @@ CellComplexPart build_cell_complex_distributed(TracePart&& trace, Communicator& 
     cc.boundary_vertices.assign(points.begin(), points.end());
     part.boundary_ids.push_back(std::move(ids));
     part.boundary_sizes.push_back(size);
+    numbered(boundary_start, size);
+    if (to_ranges) add_empty_range(*part.ranges, size, comm);
     has_boundary = size > 0;
   }
+  const IndexArray no_boundary_facets;
   // Hash tables only while a look-up needs them (a boundary level, for the boundary facets of the
   // interior level above it): they are a quarter to a third of a level's memory.
   cc.interior[0].simplices.release_index();
@@ -399,7 +496,7 @@ CellComplexPart build_cell_complex_distributed(TracePart&& trace, Communicator& 
     std::vector<std::uint32_t> ids;
     std::uint64_t size = 0;
     cc.interior.push_back(next_level(cc.interior[j - 1], part.interior_ids[j - 1], part.interior_sizes[j - 1], d, k + j,
-                                     comm, ids, size, in_global_order));
+                                     comm, ids, size, to_ranges));
     part.interior_ids.push_back(std::move(ids));
     part.interior_sizes.push_back(size);
     CellLevel& level = cc.interior[j];
@@ -412,13 +509,27 @@ CellComplexPart build_cell_complex_distributed(TracePart&& trace, Communicator& 
         level.boundary_facet[c] = b == PackedKeyIndex::kAbsent ? CellLevel::kNone : part.boundary_ids[j - 1][b];
       }
     }
+    if (to_ranges) {
+      send_to_ranges(*part.ranges, incidences, part.interior_ids[j], size, interior_start[j - 1], level.boundary_facet,
+                     has_boundary ? boundary_start[j - 1] : 0, comm);
+      level.boundary_facet = IndexArray{};  // (sent: the topology reads it in its range)
+    }
+    numbered(interior_start, size);
     if (has_boundary && j <= m - 1) {
       cc.boundary.push_back(next_level(cc.boundary[j - 1], part.boundary_ids[j - 1], part.boundary_sizes[j - 1], d,
-                                       k + 1 + j, comm, ids, size, in_global_order));
+                                       k + 1 + j, comm, ids, size, to_ranges));
       part.boundary_ids.push_back(std::move(ids));
       part.boundary_sizes.push_back(size);
+      if (to_ranges)
+        send_to_ranges(*part.ranges, incidences, part.boundary_ids[j], size, boundary_start[j - 1], no_boundary_facets,
+                       0, comm);
+      numbered(boundary_start, size);
     }
     if (j - 1 < static_cast<int>(cc.boundary.size())) cc.boundary[j - 1].simplices.release_index();
+    if (to_ranges) {  // (the keys of the levels below have served: the topology reads none)
+      release_keys(cc.interior[j - 1]);
+      if (j - 1 < static_cast<int>(cc.boundary.size())) release_keys(cc.boundary[j - 1]);
+    }
   }
   if (!has_boundary) {  // empty levels, uniform shape
     cc.boundary.resize(std::max(m, 0));
@@ -426,7 +537,7 @@ CellComplexPart build_cell_complex_distributed(TracePart&& trace, Communicator& 
     part.boundary_sizes.resize(cc.boundary.size());
   }
   for (auto& l : cc.boundary)
-    if (l.simplices.words() != words) l.simplices = PackedKeyIndex(words);
+    if (l.size() == 0 && l.simplices.words() != words) l.simplices = PackedKeyIndex(words);  // (released keys stay so)
   for (auto* levels : {&cc.interior, &cc.boundary})
     for (CellLevel& l : *levels) l.simplices.release_index();
   return part;
@@ -613,9 +724,6 @@ struct Halo {
   std::vector<std::uint32_t> ids, facet_offsets{0}, facets, boundary_facet;
   std::vector<double> rows;
 };
-
-// Frees a level's keys, keeping its size: neither the topology nor a mesh writer reads a key.
-void release_keys(CellLevel& level) { level.simplices = PackedKeyIndex::without_keys(level.simplices.size()); }
 
 }  // namespace
 

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <span>
 #include <vector>
 
 #include "coxmesh/cell_complex/cell_complex.h"
@@ -10,6 +12,29 @@
 #include "coxmesh/util/communicator.h"
 
 namespace coxmesh {
+
+/// The topology's share of the complex at one rank (topology_distributed.h): each level's ids cut
+/// into P contiguous ranges, range r at rank r (range_start), the levels one after the other as
+/// GlobalCells orders them (interior 0, boundary 0, interior 1, …); per cell its facets, and an
+/// interior cell's boundary facet, by id over all levels (the first level's cells first), increasing.
+struct TopologyRanges {
+  std::vector<std::uint32_t> offsets{0}, facets;
+  std::span<const std::uint32_t> of(std::uint64_t i) const {
+    return {facets.data() + offsets[i], facets.data() + offsets[i + 1]};
+  }
+};
+
+/// The first id of rank r's range of a level of `size` cells cut between `ranks` ranks.
+inline std::uint64_t range_start(std::uint64_t size, int r, int ranks) {
+  return size * static_cast<std::uint64_t>(r) / static_cast<std::uint64_t>(ranks);
+}
+/// The rank whose range holds id u of a level of `size` cells.
+inline int range_rank(std::uint64_t u, std::uint64_t size, int ranks) {
+  int r = static_cast<int>(u * static_cast<std::uint64_t>(ranks) / size);  // (then a step at most, by rounding)
+  while (r + 1 < ranks && range_start(size, r + 1, ranks) <= u) ++r;
+  while (range_start(size, r, ranks) > u) --r;
+  return r;
+}
 
 /// One rank's part of the cell complex: the cells whose ambient simplex it owns (owner_rank of the
 /// simplex's minimal vertex, as in the walk). Gathered over the ranks, each cell at its global id,
@@ -24,6 +49,9 @@ struct CellComplexPart {
   std::vector<std::vector<std::uint32_t>> interior_ids, boundary_ids;
   /// Cells per level over all ranks.
   std::vector<std::uint64_t> interior_sizes, boundary_sizes;
+  /// Without global order (build_cell_complex_distributed): this rank's ranges for the topology,
+  /// the levels above the vertex cells then holding no facets.
+  std::optional<TopologyRanges> ranges;
 };
 
 /// Builds this rank's part from its share of the trace; collective (every rank calls it). A level's
@@ -31,9 +59,10 @@ struct CellComplexPart {
 /// from) << 32 | position among its cofaces); each owner keeps a cell's smallest key, and the level
 /// is numbered in the order of those keys, as the single process discovers it. Memory per rank:
 /// its cells and, while a level is built, that level's incidences at this rank and the records that
-/// cross to or from it. Without `in_global_order`, the levels above the vertex cells stay in the order
-/// their cells reached this rank (with their ids): enough for gather_cell_complex and the topology,
-/// which place each cell by its id, not for closure_for_writing nor a piece of a file.
+/// cross to or from it. Without `in_global_order` (no file), the levels above the vertex cells stay in
+/// the order their cells reached this rank (with their ids) and keep no facets: as each level is
+/// numbered, its incidences go straight to the ranks of its cells' ranges (`ranges`), where the
+/// topology reads them; such a part serves only analyze_topology_distributed (and its vertex rows).
 CellComplexPart build_cell_complex_distributed(TracePart&& trace, Communicator& comm, bool in_global_order = true);
 
 /// The whole complex from all the parts (in any order), each cell at its global id: the one

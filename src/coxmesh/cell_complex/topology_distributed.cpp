@@ -57,7 +57,7 @@ struct Layout {
   int levels() const { return static_cast<int>(size.size()); }
   std::uint64_t total() const { return start.back(); }
   std::uint64_t local_count() const { return local_start.back(); }
-  std::uint64_t first(int l, int r) const { return size[l] * static_cast<std::uint64_t>(r) / ranks; }
+  std::uint64_t first(int l, int r) const { return range_start(size[l], r, ranks); }
   // (kept, not divided again: local() runs several times per incidence)
   std::uint64_t lo(int l) const { return lo_[l]; }
   std::uint64_t hi(int l) const { return hi_[l]; }
@@ -74,12 +74,7 @@ struct Layout {
     return l;
   }
   // The rank whose range of level l holds the cell of id u in that level.
-  int owner(int l, std::uint64_t u) const {
-    int r = static_cast<int>(u * static_cast<std::uint64_t>(ranks) / size[l]);
-    while (r + 1 < ranks && first(l, r + 1) <= u) ++r;
-    while (first(l, r) > u) --r;
-    return r;
-  }
+  int owner(int l, std::uint64_t u) const { return range_rank(u, size[l], ranks); }
   int owner(std::uint32_t g) const {
     const int l = level_of(g);
     return owner(l, g - start[l]);
@@ -100,16 +95,18 @@ struct Layout {
 };
 
 // This rank's ranges as one facet CSR over its cells (local indices), facets by global id.
-struct Ranges {
-  std::vector<std::uint32_t> offsets{0}, facets;
-  std::span<const std::uint32_t> of(std::uint64_t i) const {
-    return {facets.data() + offsets[i], facets.data() + offsets[i + 1]};
-  }
-};
+using Ranges = TopologyRanges;
 
 // Sends every cell of the part to the rank of its range, level by level, releasing the part's
-// level once it is sent (the peak is one level in flight, not a second copy of the part).
+// level once it is sent (the peak is one level in flight, not a second copy of the part); a part
+// built without global order has its ranges already.
 Ranges redistribute(CellComplexPart& part, const Layout& layout, Communicator& comm) {
+  if (part.ranges) {
+    Ranges out = std::move(*part.ranges);
+    part = CellComplexPart{};
+    if (out.offsets.size() != layout.local_count() + 1) throw std::logic_error("ranges of another layout");
+    return out;
+  }
   Ranges out;
   part.cells.vertices = PointArray{};
   part.cells.boundary_vertices = PointArray{};

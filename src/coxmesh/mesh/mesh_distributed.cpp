@@ -99,7 +99,8 @@ ComplexTracer distributed_complex_tracer(Communicator& comm, PartWriter write_pa
     traced.oracle_calls = part.oracle_calls;
     traced.function_evaluations = part.function_evaluations;
     const bool empty = part.size == 0;  // (mesh_manifold says why)
-    // (a piece of a file lists its cells in global order; the topology places them by id)
+    // (a piece of a file lists its cells in global order; without one, the topology gets each level's
+    // incidences in its ranges as the level is numbered)
     CellComplexPart cells = build_cell_complex_distributed(std::move(part), comm, write_part != nullptr);
     TracedComplex out;  // (the verdicts first: the writer may release the vertex rows)
     if (!empty) {
