@@ -3,6 +3,7 @@
 #include "coxmesh/tracing/walk_distributed.h"
 
 #include <cstring>
+#include <stdexcept>
 
 #include "coxmesh/lattice/cofaces.h"
 #include "coxmesh/lattice/faces.h"
@@ -30,6 +31,7 @@ DistributedWalk::DistributedWalk(const Triangulation& t, IntersectionOracle& ora
       known_vertices_(d_),
       candidates_out_(ranks_),
       tested_out_(ranks_),
+      handed_out_(ranks_),
       point_(d_),
       last_owner_(d_, ranks_) {}
 
@@ -63,6 +65,7 @@ Found DistributedWalk::classify(const Simplex& tau, const std::uint32_t* key, st
 // once in the whole job, by its owner: when it tests it, or when another rank reports it.
 Found DistributedWalk::test(const std::uint32_t* key, std::uint64_t hash, const Simplex& tau, int owner,
                             std::uint32_t known, const Slots& slots) {
+  if (handed_values_) load_handed_values();
   const bool owned = owner == rank_;
   if (owned && known == PackedKeyIndex::kAbsent) ++calls_;
   ++tests_;
@@ -151,6 +154,10 @@ template <int kD>
 void DistributedWalk::finish_cofacet(std::uint32_t i, const PendingCofacet& p) {
   const Simplex& mu = p.mu;
   discovery_ = std::uint64_t{global_ids_[i]} << 32 | p.index;
+  if (p.guess >= 0)  // (a guess this rank knows the answer of is classified here)
+    if (const int owner = last_owner_.of<kD>(p.facet.y.data());
+        owner != rank_ && others_.find(p.key, p.hash) == PackedKeyIndex::kAbsent)
+      return hand_over(i, p, owner);
   fresh_ = Fresh::no;
   const Found f = classify_pending<kD>(
       p, [this](const Simplex& s, const std::uint32_t* key, std::uint64_t h) { return classify(s, key, h); },
@@ -164,6 +171,102 @@ void DistributedWalk::finish_cofacet(std::uint32_t i, const PendingCofacet& p) {
                           outside_.data() + f.index, d_);
   } else if (f.kind == Kind::inside && fresh_ != Fresh::no) {
     set_fresh_arrival(arrival_code<kD>(mu, f.facet, fresh_key_, d_));
+  }
+}
+
+// μ to the owner of its guessed facet, which settles it as finish_cofacet does (settle_handed):
+// μ, the discovery, which vertices of μ are τ's extra one and the guess, τ's point and D̂ (if μ
+// meets the boundary) and the values of μ's vertices (all fetched for this level).
+void DistributedWalk::hand_over(std::uint32_t i, const PendingCofacet& p, int owner) {
+  std::vector<std::byte>& out = handed_out_[owner];
+  std::uint32_t key[packed_words(kMaxDimension)];
+  pack(p.mu, key);
+  put(out, key, words_);
+  put(out, &discovery_, 1);
+  const std::uint32_t which = static_cast<std::uint32_t>(p.entry) | static_cast<std::uint32_t>(p.guess) << 16;
+  put(out, &which, 1);
+  put(out, points_.data() + static_cast<std::size_t>(i) * d_, d_);
+  put(out, &domain_values_[i], 1);
+  const int stride = values_.stride();
+  const std::size_t at = out.size();
+  out.resize(at + sizeof(double) * stride * (k_ + 2));
+  std::int32_t v[kMaxDimension];
+  double values[kMaxDimension + 1];
+  for (int j = 0; j <= k_ + 1; ++j) {
+    p.mu.vertex(j, v);
+    values_.get(v, hash_words(reinterpret_cast<const std::uint32_t*>(v), d_), values,
+                [](double*) { throw std::logic_error("a vertex value missing from its level's"); });
+    std::memcpy(out.data() + at + sizeof(double) * stride * j, values, sizeof(double) * stride);
+  }
+}
+
+// The handed cofacets of other ranks' τ (hand_over's records from `in` to `end`), settled here as
+// finish_cofacet settles this rank's: what they find for other ranks goes with the tests reported.
+void DistributedWalk::settle_handed(const std::byte* in, const std::byte* const end) {
+  const std::size_t values_size = sizeof(double) * values_.stride() * (k_ + 2);
+  const std::size_t record =
+      sizeof(std::uint32_t) * (words_ + 1) + sizeof(std::uint64_t) + sizeof(double) * (d_ + 1) + values_size;
+  PendingCofacet p;
+  std::uint32_t key[packed_words(kMaxDimension)];
+  double tau_point[kMaxDimension + 1];
+  while (static_cast<std::size_t>(end - in) >= record) {
+    take(in, key, words_);
+    take(in, &discovery_, 1);
+    std::uint32_t which;
+    take(in, &which, 1);
+    take(in, tau_point, d_ + 1);
+    handed_values_ = in;
+    in += values_size;
+    p.mu = handed_mu_ = unpack(key, d_);
+    p.entry = static_cast<int>(which & 0xFFFF), p.guess = static_cast<int>(which >> 16);
+    p.facet = facet_without(p.mu, p.guess);
+    p.hash = pack_hashed<0>(p.facet, p.key);
+    fresh_ = Fresh::no;
+    const Found f = classify_pending(
+        p, [this](const Simplex& s, const std::uint32_t* k, std::uint64_t h) { return classify(s, k, h); },
+        [this](const Simplex& s) { return classify(s); });
+    handed_values_ = nullptr;
+    if (f.kind == Kind::outside) {
+      boundary_keys_.push_back(discovery_);
+      boundary_simplices_.insert(boundary_simplices_.end(), key, key + words_);
+      append_boundary_point(boundary_points_, tau_point, tau_point[d_], outside_.data() + f.index, d_);
+    } else if (f.kind == Kind::inside && fresh_ != Fresh::no) {
+      set_fresh_arrival(arrival_code(p.mu, f.facet, fresh_key_, d_));
+    } else if (f.kind == Kind::inside) {
+      // Met before, from a τ walked later than this one maybe: the smallest discovery wins.
+      const Simplex facet = facet_without(p.mu, f.facet);
+      std::uint32_t facet_key[packed_words(kMaxDimension)];
+      const std::uint64_t h = pack_hashed<0>(facet, facet_key);
+      const std::uint64_t arrival = arrival_code(p.mu, f.facet, facet_key, d_);
+      const int owner = last_owner_.of(facet.y.data());
+      if (owner == rank_) {
+        if (const std::uint32_t id = next_.find(facet_key, h);
+            id != PackedKeyIndex::kAbsent && discovery_ < next_keys_[id])
+          next_keys_[id] = discovery_, next_arrivals_[id] = arrival;
+      } else {  // (its owner holds it already, with its point: this one is not read)
+        std::vector<std::byte>& out = candidates_out_[owner];
+        put(out, facet_key, words_);
+        put(out, &discovery_, 1);
+        put(out, &arrival, 1);
+        out.resize(out.size() + sizeof(double) * (d_ + 1));
+      }
+    }
+  }
+}
+
+// The values of the vertices of the handed cofacet being settled, before its first test.
+void DistributedWalk::load_handed_values() {
+  const int stride = values_.stride();
+  const std::byte* in = handed_values_;
+  handed_values_ = nullptr;
+  double scratch[kMaxDimension + 1];
+  std::int32_t v[kMaxDimension];
+  for (int j = 0; j <= k_ + 1; ++j, in += sizeof(double) * stride) {
+    handed_mu_.vertex(j, v);
+    const auto* key = reinterpret_cast<const std::uint32_t*>(v);
+    const std::uint64_t h = hash_words(key, d_);
+    values_.get(v, h, scratch, [&](double* values) { std::memcpy(values, in, sizeof(double) * stride); });
+    known_vertices_.insert(key, h);  // (not asked for again)
   }
 }
 

@@ -53,6 +53,10 @@ class DistributedWalk {
   Found test(const std::uint32_t* key, std::uint64_t hash, const Simplex& tau, int owner, std::uint32_t known,
              const Slots& slots);
   void set_fresh_arrival(std::uint64_t arrival);
+  void hand_over(std::uint32_t i, const PendingCofacet& p, int owner);
+  void settle_handed(const std::byte* in, const std::byte* end);
+  void load_handed_values();
+  void take_candidates(const std::byte* in, const std::byte* end);
   void walk_level();
   template <int kD>  // (d fixed at compile time, 0: read at run time)
   void walk_level();
@@ -98,6 +102,11 @@ class DistributedWalk {
   PackedKeyIndex known_vertices_;
   // Per rank: transverse simplices found for it this level, and the keys it owns tested here.
   std::vector<std::vector<std::byte>> candidates_out_, tested_out_;
+  // Per rank: cofacets of this rank's τ whose guessed facet it owns (it tests the guess once, where
+  // both ranks met it), each with μ's vertex values (loaded only if tested: handed_values_).
+  std::vector<std::vector<std::byte>> handed_out_;
+  const std::byte* handed_values_ = nullptr;
+  Simplex handed_mu_;
   // S_∂ found here: (id of τ) << 32 | cofacet, key and point.
   std::vector<std::uint64_t> boundary_keys_;
   std::vector<std::uint32_t> boundary_simplices_;
