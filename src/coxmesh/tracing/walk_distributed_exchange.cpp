@@ -231,7 +231,10 @@ std::pair<const std::byte*, const std::byte*> tail_of(const std::byte* part, std
 // first discovery does in the sequential walk), with the cofacets handed over; then what settling
 // those found for other ranks, and the tests of other ranks' simplices, counted by the owner once.
 void DistributedWalk::exchange_candidates() {
-  for (int r = 0; r < ranks_; ++r) append_tail(candidates_out_[r], handed_out_[r]);
+  for (int r = 0; r < ranks_; ++r) {
+    append_tail(handed_out_[r], handed_values_out_[r]);
+    append_tail(candidates_out_[r], handed_out_[r]);
+  }
   std::vector<std::size_t> counts;
   const std::vector<std::byte> found = comm_.exchange(candidates_out_, counts);
   for (auto& out : candidates_out_) out.clear();
@@ -241,7 +244,10 @@ void DistributedWalk::exchange_candidates() {
     handed[r] = tail_of(part, counts[r]);
     take_candidates(part, handed[r].first);
   }
-  for (const auto& [begin, end] : handed) settle_handed(begin, end);
+  for (const auto& [begin, end] : handed) {
+    const auto [values, values_end] = tail_of(begin, static_cast<std::size_t>(end - begin));
+    settle_handed(begin, values, values);
+  }
   for (int r = 0; r < ranks_; ++r) append_tail(tested_out_[r], candidates_out_[r]);
   const std::vector<std::byte> tested = comm_.exchange(tested_out_, counts);
   for (auto& out : tested_out_) out.clear();
