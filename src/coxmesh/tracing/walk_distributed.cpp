@@ -2,9 +2,7 @@
 // (every rank searches every seed, so all of them agree on what it found without a message).
 #include "coxmesh/tracing/walk_distributed.h"
 
-#include <algorithm>
 #include <cstring>
-#include <stdexcept>
 
 #include "coxmesh/lattice/cofaces.h"
 #include "coxmesh/lattice/faces.h"
@@ -32,11 +30,8 @@ DistributedWalk::DistributedWalk(const Triangulation& t, IntersectionOracle& ora
       known_vertices_(d_),
       candidates_out_(ranks_),
       tested_out_(ranks_),
-      handed_out_(ranks_),
-      handed_values_out_(ranks_),
       point_(d_),
-      last_owner_(d_, ranks_),
-      vertex_owner_(d_, ranks_) {}
+      last_owner_(d_, ranks_) {}
 
 Found DistributedWalk::classify(const Simplex& tau) {
   std::uint32_t key[packed_words(kMaxDimension)];
@@ -59,7 +54,7 @@ Found DistributedWalk::classify(const Simplex& tau, const std::uint32_t* key, st
     const std::uint32_t p = other_payload_[known];
     if (p == kMiss) return {Kind::miss, 0};
     if (p == kRemoteInside) return {Kind::inside, 0};
-    if (p != kUntested && p != kHanded) return {Kind::outside, p};
+    if (p != kUntested) return {Kind::outside, p};
   }
   return test(key, h, tau, owner, known, slots);
 }
@@ -68,7 +63,6 @@ Found DistributedWalk::classify(const Simplex& tau, const std::uint32_t* key, st
 // once in the whole job, by its owner: when it tests it, or when another rank reports it.
 Found DistributedWalk::test(const std::uint32_t* key, std::uint64_t hash, const Simplex& tau, int owner,
                             std::uint32_t known, const Slots& slots) {
-  if (handed_values_) load_handed_values();
   const bool owned = owner == rank_;
   if (owned && known == PackedKeyIndex::kAbsent) ++calls_;
   ++tests_;
@@ -84,12 +78,8 @@ Found DistributedWalk::test(const std::uint32_t* key, std::uint64_t hash, const 
       fresh_ = Fresh::owned, fresh_at_ = id;
       return {Kind::inside, id};
     }
-    if (known == PackedKeyIndex::kAbsent) {
-      others_.insert_at(slots.others, key, hash);  // (classify looked, and τ is not ours)
-      other_payload_.push_back(kRemoteInside);
-    } else {  // (handed: its owner counts it)
-      other_payload_[known] = kRemoteInside;
-    }
+    others_.insert_at(slots.others, key, hash);  // (absent: classify looked, and τ is not ours)
+    other_payload_.push_back(kRemoteInside);
     if (reporting_) {  // (in the seed search the owner tests it itself)
       std::vector<std::byte>& out = candidates_out_[owner];
       put(out, key, words_);
@@ -161,17 +151,6 @@ template <int kD>
 void DistributedWalk::finish_cofacet(std::uint32_t i, const PendingCofacet& p) {
   const Simplex& mu = p.mu;
   discovery_ = std::uint64_t{global_ids_[i]} << 32 | p.index;
-  if (p.guess >= 0)  // (a guess this rank knows the answer of is classified here)
-    if (const int owner = last_owner_.of<kD>(p.facet.y.data()); owner != rank_) {
-      std::size_t slot;
-      const std::uint32_t known = others_.find(p.key, p.hash, slot);
-      if (known == PackedKeyIndex::kAbsent) {
-        others_.insert_at(slot, p.key, p.hash);
-        other_payload_.push_back(kHanded);
-        return hand_over(p, owner, false);
-      }
-      if (other_payload_[known] == kHanded) return hand_over(p, owner, true);
-    }
   fresh_ = Fresh::no;
   const Found f = classify_pending<kD>(
       p, [this](const Simplex& s, const std::uint32_t* key, std::uint64_t h) { return classify(s, key, h); },
@@ -185,124 +164,6 @@ void DistributedWalk::finish_cofacet(std::uint32_t i, const PendingCofacet& p) {
                           outside_.data() + f.index, d_);
   } else if (f.kind == Kind::inside && fresh_ != Fresh::no) {
     set_fresh_arrival(arrival_code<kD>(mu, f.facet, fresh_key_, d_));
-  }
-}
-
-// μ to the owner of its guessed facet, which settles it as finish_cofacet does (settle_handed):
-// μ, the discovery, which vertex of μ is not τ's and which facet is the guess, and the values of
-// μ's vertices that the owner does not own (all fetched here for this level; it has its own). A
-// guess handed `again` goes with the value of μ's vertex outside it alone: when the guess is not in
-// S, its owner has tested it, so it has the values of its vertices.
-void DistributedWalk::hand_over(const PendingCofacet& p, int owner, bool again) {
-  std::vector<std::byte>& out = handed_out_[owner];
-  std::uint32_t key[packed_words(kMaxDimension)];
-  pack(p.mu, key);
-  put(out, key, words_);
-  put(out, &discovery_, 1);
-  const std::uint32_t which =
-      static_cast<std::uint32_t>(p.entry) | static_cast<std::uint32_t>(p.guess) << 8 | (again ? 1u : 0u) << 16;
-  put(out, &which, 1);
-  put(out, &p.hash, 1);
-  std::vector<std::byte>& values_out = handed_values_out_[owner];
-  std::int32_t v[kMaxDimension];
-  double values[kMaxDimension + 1];
-  for (int j = 0; j <= k_ + 1; ++j) {
-    if (again && j != p.guess) continue;
-    p.mu.vertex(j, v);
-    if (vertex_owner_.of(v) == owner) continue;
-    values_.get(v, hash_words(reinterpret_cast<const std::uint32_t*>(v), d_), values,
-                [](double*) { throw std::logic_error("a vertex value missing from its level's"); });
-    put(values_out, values, values_.stride());
-  }
-}
-
-// The handed cofacets of other ranks' τ (hand_over's records from `in` to `end`), settled here as
-// finish_cofacet settles this rank's: what they find for other ranks goes with the tests reported.
-void DistributedWalk::settle_handed(const std::byte* in, const std::byte* const end, const std::byte* values) {
-  const std::size_t record = sizeof(std::uint32_t) * (words_ + 1) + 2 * sizeof(std::uint64_t);
-  const std::size_t vertex_values = sizeof(double) * values_.stride();
-  const std::size_t n = static_cast<std::size_t>(end - in) / record;
-  constexpr std::size_t kAhead = 8;  // (the guess's slots fetched ahead: its hash is in the record)
-  const auto prefetch = [&](std::size_t i) {
-    std::uint64_t h;
-    std::memcpy(&h, in + i * record + record - sizeof h, sizeof h);
-    mine_.prefetch(h), next_.prefetch(h), others_.prefetch(h);
-  };
-  for (std::size_t i = 0; i < std::min(n, kAhead); ++i) prefetch(i);
-  PendingCofacet p;
-  std::uint32_t key[packed_words(kMaxDimension)];
-  std::int32_t v[kMaxDimension];
-  for (std::size_t i = 0; i < n; ++i) {
-    if (i + kAhead < n) prefetch(i + kAhead);
-    const std::byte* at = in + i * record;
-    take(at, key, words_);
-    take(at, &discovery_, 1);
-    std::uint32_t which;
-    take(at, &which, 1);
-    take(at, &p.hash, 1);
-    p.mu = handed_mu_ = unpack(key, d_);
-    p.entry = static_cast<int>(which & 0xFF), p.guess = static_cast<int>(which >> 8 & 0xFF);
-    handed_again_ = (which >> 16) != 0, handed_guess_ = p.guess;
-    handed_values_ = values;
-    for (int j = 0; j <= k_ + 1; ++j)
-      if (!(handed_again_ && j != p.guess) && (p.mu.vertex(j, v), vertex_owner_.of(v) != rank_))
-        values += vertex_values;
-    p.facet = facet_without(p.mu, p.guess);
-    pack(p.facet, p.key);
-    fresh_ = Fresh::no;
-    const Found f = classify_pending(
-        p, [this](const Simplex& s, const std::uint32_t* k, std::uint64_t h) { return classify(s, k, h); },
-        [this](const Simplex& s) { return classify(s); });
-    if (f.kind == Kind::outside) {
-      // τ's point and D̂ again (τ is in S: the oracle finds what it found then), for the boundary's.
-      if (handed_values_) load_handed_values();
-      double tau_point[kMaxDimension];
-      const double tau_domain = oracle_.intersect(facet_without(p.mu, p.entry), tau_point).domain;
-      boundary_keys_.push_back(discovery_);
-      boundary_simplices_.insert(boundary_simplices_.end(), key, key + words_);
-      append_boundary_point(boundary_points_, tau_point, tau_domain, outside_.data() + f.index, d_);
-    } else if (f.kind == Kind::inside && fresh_ != Fresh::no) {
-      set_fresh_arrival(arrival_code(p.mu, f.facet, fresh_key_, d_));
-    } else if (f.kind == Kind::inside) {
-      // Met before, from a τ walked later than this one maybe: the smallest discovery wins.
-      const Simplex facet = facet_without(p.mu, f.facet);
-      std::uint32_t facet_key[packed_words(kMaxDimension)];
-      const std::uint64_t h = pack_hashed<0>(facet, facet_key);
-      const std::uint64_t arrival = arrival_code(p.mu, f.facet, facet_key, d_);
-      const int owner = last_owner_.of(facet.y.data());
-      if (owner == rank_) {
-        if (const std::uint32_t id = next_.find(facet_key, h);
-            id != PackedKeyIndex::kAbsent && discovery_ < next_keys_[id])
-          next_keys_[id] = discovery_, next_arrivals_[id] = arrival;
-      } else {  // (its owner holds it already, with its point: this one is not read)
-        std::vector<std::byte>& out = candidates_out_[owner];
-        put(out, facet_key, words_);
-        put(out, &discovery_, 1);
-        put(out, &arrival, 1);
-        out.resize(out.size() + sizeof(double) * (d_ + 1));
-      }
-    }
-    handed_values_ = nullptr;
-  }
-}
-
-// The values of the vertices of the handed cofacet being settled that this rank does not own,
-// before its first test.
-void DistributedWalk::load_handed_values() {
-  const int stride = values_.stride();
-  const std::byte* in = handed_values_;
-  handed_values_ = nullptr;
-  double scratch[kMaxDimension + 1];
-  std::int32_t v[kMaxDimension];
-  for (int j = 0; j <= k_ + 1; ++j) {
-    if (handed_again_ && j != handed_guess_) continue;
-    handed_mu_.vertex(j, v);
-    if (vertex_owner_.of(v) == rank_) continue;
-    const auto* key = reinterpret_cast<const std::uint32_t*>(v);
-    const std::uint64_t h = hash_words(key, d_);
-    values_.get(v, h, scratch, [&](double* values) { std::memcpy(values, in, sizeof(double) * stride); });
-    known_vertices_.insert(key, h);  // (not asked for again)
-    in += sizeof(double) * stride;
   }
 }
 

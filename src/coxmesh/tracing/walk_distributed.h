@@ -40,7 +40,6 @@ class DistributedWalk {
   // Payloads of others_ besides kMiss and an index into outside_.
   static constexpr std::uint32_t kRemoteInside = 0xFFFFFFFEu;  // another rank's simplex of S
   static constexpr std::uint32_t kUntested = 0xFFFFFFFDu;      // ours, tested (and counted) by another rank
-  static constexpr std::uint32_t kHanded = 0xFFFFFFFCu;        // another rank's, the guess of a cofacet handed to it
 
   // Where an absent simplex goes in next_ and in others_ (PackedKeyIndex::find's slots).
   struct Slots {
@@ -54,10 +53,6 @@ class DistributedWalk {
   Found test(const std::uint32_t* key, std::uint64_t hash, const Simplex& tau, int owner, std::uint32_t known,
              const Slots& slots);
   void set_fresh_arrival(std::uint64_t arrival);
-  void hand_over(const PendingCofacet& p, int owner, bool again);
-  void settle_handed(const std::byte* in, const std::byte* end, const std::byte* values);
-  void load_handed_values();
-  void take_candidates(const std::byte* in, const std::byte* end);
   void walk_level();
   template <int kD>  // (d fixed at compile time, 0: read at run time)
   void walk_level();
@@ -94,7 +89,7 @@ class DistributedWalk {
   PackedKeyIndex next_;
   std::vector<std::uint64_t> next_keys_, next_arrivals_;
   std::vector<double> next_data_;  // d + 1 each: point, D̂
-  // Every other tested simplex: payload kMiss, kRemoteInside, kUntested (tested by another rank), kHanded,
+  // Every other tested simplex: payload kMiss, kRemoteInside, kUntested (tested by another rank),
   // or an index into outside_ (point, D̂).
   PackedKeyIndex others_;
   std::vector<std::uint32_t> other_payload_;
@@ -103,13 +98,6 @@ class DistributedWalk {
   PackedKeyIndex known_vertices_;
   // Per rank: transverse simplices found for it this level, and the keys it owns tested here.
   std::vector<std::vector<std::byte>> candidates_out_, tested_out_;
-  // Per rank: cofacets of this rank's τ whose guessed facet it owns (it tests the guess once, where
-  // both ranks met it), each with μ's vertex values (loaded only if tested: handed_values_).
-  std::vector<std::vector<std::byte>> handed_out_, handed_values_out_;  // (fixed records, then their values)
-  const std::byte* handed_values_ = nullptr;
-  Simplex handed_mu_;
-  bool handed_again_ = false;  // (its values: its vertex `handed_guess_` alone)
-  int handed_guess_ = 0;
   // S_∂ found here: (id of τ) << 32 | cofacet, key and point.
   std::vector<std::uint64_t> boundary_keys_;
   std::vector<std::uint32_t> boundary_simplices_;
@@ -123,8 +111,7 @@ class DistributedWalk {
   std::size_t fresh_at_ = 0;  // where its arrival code goes (next_ id, or byte offset in candidates_out_)
   std::uint32_t fresh_key_[packed_words(kMaxDimension)];
   std::vector<double> point_;
-  LastOwner last_owner_;    // (of a tested simplex's minimal vertex)
-  LastOwner vertex_owner_;  // (of a handed cofacet's vertices: apart, not to evict the one above)
+  LastOwner last_owner_;  // (of a tested simplex's minimal vertex)
   std::uint64_t calls_ = 0, tests_ = 0, evaluations_ = 0, vertex_values_sent_ = 0, candidates_sent_ = 0, levels_ = 0;
   std::size_t last_progress_ = 0;
   bool stopped_ = false;

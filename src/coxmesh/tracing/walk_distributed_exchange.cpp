@@ -162,8 +162,7 @@ void DistributedWalk::fetch_vertex_values(const std::vector<std::int32_t>& verti
     for (std::size_t n = requests[r].size() / (sizeof(std::int32_t) * d_); n > 0; --n, v += d_) {
       const auto* key = reinterpret_cast<const std::uint32_t*>(v);
       const std::uint64_t h = hash_words(key, d_);
-      values_.get(v, h, scratch.data(), [&](double* values) { std::memcpy(values, in, sizeof(double) * stride); });
-      in += sizeof(double) * stride;  // (the answer is read past even when the value is here already)
+      values_.get(v, h, scratch.data(), [&](double* values) { take(in, values, stride); });
       known_vertices_.insert(key, h);
     }
   }
@@ -207,75 +206,20 @@ std::exception_ptr DistributedWalk::push_vertex_values(const std::vector<std::in
   return failure;
 }
 
-namespace {
-
-// Appends `tail` and its size in bytes to `out`, and clears it: two kinds of records in one message.
-void append_tail(std::vector<std::byte>& out, std::vector<std::byte>& tail) {
-  const std::uint64_t size = tail.size();
-  out.insert(out.end(), tail.begin(), tail.end());
-  put(out, &size, 1);
-  tail.clear();
-}
-
-// Where the tail of rank r's part (append_tail) begins, and where it ends.
-std::pair<const std::byte*, const std::byte*> tail_of(const std::byte* part, std::size_t bytes) {
-  if (bytes == 0) return {part, part};  // (a part sent to itself, if the communicator drops it)
-  std::uint64_t size;
-  std::memcpy(&size, part + bytes - sizeof size, sizeof size);
-  return {part + bytes - sizeof size - size, part + bytes - sizeof size};
-}
-
-}  // namespace
-
 // The level's discoveries to their owners (the smallest discovery key of a simplex wins, as the
-// first discovery does in the sequential walk), with the cofacets handed over; then what settling
-// those found for other ranks, and the tests of other ranks' simplices, counted by the owner once.
+// first discovery does in the sequential walk), and the tests of other ranks' simplices, counted
+// by the owner once.
 void DistributedWalk::exchange_candidates() {
-  for (int r = 0; r < ranks_; ++r) {
-    append_tail(handed_out_[r], handed_values_out_[r]);
-    append_tail(candidates_out_[r], handed_out_[r]);
-  }
   std::vector<std::size_t> counts;
   const std::vector<std::byte> found = comm_.exchange(candidates_out_, counts);
   for (auto& out : candidates_out_) out.clear();
-  std::vector<std::pair<const std::byte*, const std::byte*>> handed(ranks_);
-  const std::byte* part = found.data();
-  for (int r = 0; r < ranks_; part += counts[r++]) {
-    handed[r] = tail_of(part, counts[r]);
-    take_candidates(part, handed[r].first);
-  }
-  for (const auto& [begin, end] : handed) {
-    const auto [values, values_end] = tail_of(begin, static_cast<std::size_t>(end - begin));
-    settle_handed(begin, values, values);
-  }
-  for (int r = 0; r < ranks_; ++r) append_tail(tested_out_[r], candidates_out_[r]);
-  const std::vector<std::byte> tested = comm_.exchange(tested_out_, counts);
-  for (auto& out : tested_out_) out.clear();
-  std::uint32_t key[packed_words(kMaxDimension)];
-  part = tested.data();
-  for (int r = 0; r < ranks_; part += counts[r++]) {
-    const auto [late, end] = tail_of(part, counts[r]);
-    take_candidates(late, end);
-    for (const std::byte* in = part; in < late;) {
-      take(in, key, words_);
-      const std::uint64_t h = hash_words(key, words_);
-      if (mine_.find(key, h) != PackedKeyIndex::kAbsent || next_.find(key, h) != PackedKeyIndex::kAbsent) continue;
-      if (others_.insert(key, h).second) {
-        ++calls_;
-        other_payload_.push_back(kUntested);
-      }
-    }
-  }
-}
-
-// Discoveries of this rank's simplices by other ranks (test()'s records from `in` to `end`).
-void DistributedWalk::take_candidates(const std::byte* in, const std::byte* const end) {
   const std::size_t record = sizeof(std::uint32_t) * words_ + 2 * sizeof(std::uint64_t) + sizeof(double) * (d_ + 1);
   std::uint32_t key[packed_words(kMaxDimension)];
   std::uint64_t discovery, arrival;
   // (the bytes left, not in + record: past the end, or from an empty buffer's null pointer, that is
   // undefined, and clang's UBSan reports it)
-  while (static_cast<std::size_t>(end - in) >= record) {
+  const std::byte* const end = found.data() + found.size();
+  for (const std::byte* in = found.data(); static_cast<std::size_t>(end - in) >= record;) {
     take(in, key, words_);
     take(in, &discovery, 1);
     take(in, &arrival, 1);
@@ -296,6 +240,17 @@ void DistributedWalk::take_candidates(const std::byte* in, const std::byte* cons
     const std::size_t at = next_data_.size();
     next_data_.resize(at + d_ + 1);
     take(in, next_data_.data() + at, d_ + 1);
+  }
+  const std::vector<std::byte> tested = comm_.exchange(tested_out_, counts);
+  for (auto& out : tested_out_) out.clear();
+  for (const std::byte* in = tested.data(); in < tested.data() + tested.size();) {
+    take(in, key, words_);
+    const std::uint64_t h = hash_words(key, words_);
+    if (mine_.find(key, h) != PackedKeyIndex::kAbsent || next_.find(key, h) != PackedKeyIndex::kAbsent) continue;
+    if (others_.insert(key, h).second) {
+      ++calls_;
+      other_payload_.push_back(kUntested);
+    }
   }
 }
 
