@@ -162,7 +162,10 @@ void DistributedWalk::fetch_vertex_values(const std::vector<std::int32_t>& verti
     for (std::size_t n = requests[r].size() / (sizeof(std::int32_t) * d_); n > 0; --n, v += d_) {
       const auto* key = reinterpret_cast<const std::uint32_t*>(v);
       const std::uint64_t h = hash_words(key, d_);
-      values_.get(v, h, scratch.data(), [&](double* values) { take(in, values, stride); });
+      // (the answer is passed over even where the values are stored already: the next is at a fixed place)
+      const std::byte* answer = in;
+      in += sizeof(double) * stride;
+      values_.get(v, h, scratch.data(), [&](double* values) { take(answer, values, stride); });
       known_vertices_.insert(key, h);
     }
   }
