@@ -13,7 +13,6 @@
 #include <new>
 #include <random>
 #include <streambuf>
-#include <vector>
 
 #include "coxmesh/lattice/simplex.h"
 
