@@ -281,6 +281,7 @@ void run(TraceCliOptions o) {
   }
   mo.trace.threads = o.threads;
   mo.refine = o.refine;
+  mo.keep_keys = write && format == MeshFormat::cxm;  // (no other file reads them)
   // Expression functions are not thread-safe: every worker but the first gets its own.
   bool first = true;
   // Writing needs no topology: with several threads it runs while the topology is computed.

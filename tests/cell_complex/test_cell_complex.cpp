@@ -57,3 +57,33 @@ TEST(CellComplex, PipelinedLevelsAreThePlainOnes) {
     }
   }
 }
+
+// Without keys, a complex keeps everything but them: the same cell counts, facets, boundary facets
+// and vertices, level by level, and the levels hold no key (their words are gone).
+TEST(CellComplex, WithoutKeysTheSameCells) {
+  for (const FunctionPtr& domain : {FunctionPtr{}, ball_domain({0.5, 0, 0, 0}, 0.9)}) {
+    const Triangulation t = Triangulation::coxeter(4).with_longest_edge(0.35);
+    const FunctionPtr f = sphere(3, 4, 1.0);
+    ImplicitOracle oracle(t, f, domain);
+    const TraceResult traced = trace_manifold(t, oracle, {f->seed()});
+    for (int threads : {1, 2}) {
+      const CellComplex with = build_cell_complex(TraceResult(traced), threads);
+      const CellComplex without = build_cell_complex(TraceResult(traced), threads, false);
+      const std::string what =
+          std::string(domain ? "with" : "without") + " boundary, threads=" + std::to_string(threads);
+      EXPECT_TRUE(with.vertices == without.vertices && with.boundary_vertices == without.boundary_vertices) << what;
+      ASSERT_EQ(with.interior.size(), without.interior.size()) << what;
+      ASSERT_EQ(with.boundary.size(), without.boundary.size()) << what;
+      for (const auto& [a, b] :
+           {std::pair{&with.interior, &without.interior}, std::pair{&with.boundary, &without.boundary}})
+        for (std::size_t j = 0; j < a->size(); ++j) {
+          const CellLevel &x = (*a)[j], &y = (*b)[j];
+          EXPECT_EQ(y.simplices.words(), 0) << what << " level " << j;
+          EXPECT_TRUE(x.size() == y.size() && x.facet_offsets == y.facet_offsets && x.facet_ids == y.facet_ids &&
+                      x.boundary_facet == y.boundary_facet)
+              << what << " level " << j;
+        }
+      EXPECT_TRUE(!domain || without.boundary[0].size() > 0) << what;
+    }
+  }
+}

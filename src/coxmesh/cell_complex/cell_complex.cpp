@@ -45,7 +45,7 @@ std::size_t CellComplex::bytes() const {
   return b;
 }
 
-CellComplex build_cell_complex(TraceResult&& trace, int threads) {
+CellComplex build_cell_complex(TraceResult&& trace, int threads, bool keep_keys) {
   const int workers = resolve_threads(threads);
   WorkerPool pool(workers);
   CellComplex cc;
@@ -63,14 +63,14 @@ CellComplex build_cell_complex(TraceResult&& trace, int threads) {
     cc.boundary[0].facet_offsets.assign(cc.boundary[0].size() + 1, 0);
     cc.boundary_vertices = std::move(trace.boundary_points);
   }
+  // (keys dropped early give their pages to the next levels and the topology: fewer page faults,
+  // a lower peak)
+  const auto drop_keys = [](CellLevel& level) { level.simplices = PackedKeyIndex::without_keys(level.size()); };
   for (int j = 1; j <= m; ++j) {
     cc.interior.push_back(cells::next_level_pipelined(cc.interior[j - 1], d, k + j, pool));
     if (has_boundary && j <= m - 1)
       cc.boundary.push_back(cells::next_level_pipelined(cc.boundary[j - 1], d, k + 1 + j, pool));
-  }
-  if (!has_boundary) cc.boundary.resize(std::max(m, 0));  // empty levels, uniform shape
-  if (has_boundary)
-    for (int j = 1; j <= m; ++j) {
+    if (has_boundary) {  // the boundary facet of each cell of level j, in boundary level j − 1
       CellLevel& level = cc.interior[j];
       level.boundary_facet.resize(level.size());
       const std::size_t n = level.size(), parts = static_cast<std::size_t>(pool.size());
@@ -80,6 +80,17 @@ CellComplex build_cell_complex(TraceResult&& trace, int threads) {
               cc.boundary[j - 1].simplices.find(level.simplices.key(static_cast<std::uint32_t>(c)));
       });
     }
+    if (!keep_keys) {
+      drop_keys(cc.interior[j - 1]);
+      if (has_boundary) drop_keys(cc.boundary[j - 1]);
+    }
+  }
+  if (!has_boundary) cc.boundary.resize(std::max(m, 0));  // empty levels, uniform shape
+  if (!keep_keys) {
+    for (auto* levels : {&cc.interior, &cc.boundary})
+      for (CellLevel& l : *levels) drop_keys(l);
+    return cc;
+  }
   for (auto& l : cc.boundary)
     if (l.simplices.words() != packed_words(d)) l.simplices = PackedKeyIndex(packed_words(d));
   // The hash tables served the construction; the keys stay (files, tests), the tables go (a

@@ -57,8 +57,11 @@ struct CellComplex {
 /// `threads` workers (0 = all hardware threads) run batches of cells through a pipeline: cofaces
 /// enumerated in parallel, numbered in order by one task, incidences written out in parallel; the
 /// facet lists are sorted in parallel too. The complex, numbering included, is identical for every
-/// thread count.
-CellComplex build_cell_complex(TraceResult&& trace, int threads = 1);
+/// thread count. Without `keep_keys`, each level's keys are dropped as soon as the levels above no
+/// longer need them (PackedKeyIndex::without_keys): cell counts, facets and vertices stay, which
+/// is all the topology, refinement and mesh writers read; only the native format and the Python
+/// API's simplices need the keys.
+CellComplex build_cell_complex(TraceResult&& trace, int threads = 1, bool keep_keys = true);
 
 /// The stratified complex of a manifold with corners, level by level: the cells (J, ν) of dimension j
 /// are, for every cell (J, μ) of dimension j − 1, the (J, ν) for the cofacets ν of μ and the

@@ -174,7 +174,8 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
 
   if (o.on_phase) o.on_phase("building the cell complex");
   const auto t1 = Clock::now();
-  report.cells = o.complex_tracer ? std::move(built.cells) : build_cell_complex(std::move(traced), trace.threads);
+  report.cells =
+      o.complex_tracer ? std::move(built.cells) : build_cell_complex(std::move(traced), trace.threads, o.keep_keys);
   report.cell_complex_seconds = seconds_since(t1);
   // The exact rule meshes a perturbed level set where F = 0 is not a regular level: say so.
   const CellComplex& cc = report.cells;

@@ -64,6 +64,7 @@ struct MeshOptions {
   std::uint64_t max_memory = 0;            ///< bytes for trace, complex and topology (0: no limit)
   bool check_regularity = true;            ///< warn where 0 is not a regular value of F (regularity.h)
   bool refine = false;                     ///< move the vertices onto M at the end (refine.h)
+  bool keep_keys = true;                   ///< keep the cells' keys (build_cell_complex): the native format reads them
   /// Limits (max_simplices, also derived from max_memory), threads, progress; skip_unusable_seeds
   /// is set when seeds were found automatically.
   TraceOptions trace;
