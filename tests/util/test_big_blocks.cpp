@@ -1,6 +1,6 @@
 // Big blocks (util/huge_page_allocator.h): a freed block is reused by the next one that fits, kept
 // pages are gathered into a bigger block, what a kept block held never leaks into a zeroed vector,
-// and the kept memory stays bounded; also from two threads at once.
+// and the kept memory stays bounded by the bytes in use; also from two threads at once.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -77,6 +77,26 @@ TEST(BigBlocks, KeptMemoryIsBounded) {
   { const auto v = written(256 * kMiB, 7); }
   EXPECT_LT(resident_bytes(), before + 64 * kMiB);
 }
+
+#if !defined(__SANITIZE_ADDRESS__)
+// A freed block as big as the rest in use is kept for the next phase (a cell complex's level takes
+// the pages of the keys it dropped), and kept blocks go back to the system as the bytes in use fall.
+TEST(BigBlocks, KeptMemoryFollowsTheBytesInUse) {
+  const std::size_t before = resident_bytes();
+  if (before == 0) GTEST_SKIP() << "no /proc/self/statm";
+  {
+    const auto in_use = written(96 * kMiB, 1);
+    const std::uint64_t* address = nullptr;
+    {
+      const auto phase = written(96 * kMiB, 2);
+      address = phase.data();
+    }
+    const auto next = written(96 * kMiB, 3);
+    EXPECT_EQ(next.data(), address);  // (kept, then reused)
+  }
+  EXPECT_LT(resident_bytes(), before + 64 * kMiB);  // (both given back once nothing is in use)
+}
+#endif
 
 // Two threads taking and giving back blocks at once (the walk's workers do): each sees its own
 // numbers and zeroed vectors are zero.
