@@ -4,6 +4,7 @@
 #include "coxmesh/cell_complex/betti.h"
 #include "coxmesh/cell_complex/boundary_reduction.h"
 #include "coxmesh/cell_complex/global_cells.h"
+#include "coxmesh/util/huge_page_allocator.h"
 
 namespace coxmesh {
 
@@ -16,7 +17,7 @@ std::vector<std::size_t> betti_numbers_by_reduction(const CellComplex& cc, std::
   // (32-bit: the array spans all cells, of which few may be kept)
   if (n >= UINT32_MAX) throw InputError("the complex has too many cells (2^32) for its topology");
   constexpr std::uint32_t kDropped = UINT32_MAX;
-  std::vector<std::uint32_t> column(n, kDropped);
+  HugeVector<std::uint32_t> column(n, kDropped);  // (big blocks: see topology.cpp)
   std::vector<int> dim_of;
   std::vector<std::uint32_t> cell_of;  // the inverse of column
   for (int j = 0; j <= m; ++j)

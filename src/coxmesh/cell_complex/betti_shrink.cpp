@@ -11,6 +11,7 @@
 #include "coxmesh/cell_complex/betti.h"
 #include "coxmesh/cell_complex/coreduction_sweeps.h"
 #include "coxmesh/cell_complex/global_cells.h"
+#include "coxmesh/util/huge_page_allocator.h"
 #include "coxmesh/util/union_find.h"
 
 namespace coxmesh {
@@ -26,7 +27,7 @@ namespace {
 // coface lists nor queue of scattered cells, which cost 5–8 times as much for the same result
 // (collapses, a cell in one remaining cell deleted with it, left no fewer cells after these on
 // S³, T³ and SO(3)). Returns the number of cells left.
-std::size_t coreduce_in_sweeps(const GlobalCells& c, int top, bool top_is_cut, std::vector<std::uint8_t>& gone) {
+std::size_t coreduce_in_sweeps(const GlobalCells& c, int top, bool top_is_cut, HugeVector<std::uint8_t>& gone) {
   const CellComplex& cc = c.complex();
   const std::size_t base = c.start(1, false);
   struct Level {
@@ -69,14 +70,14 @@ std::vector<std::uint32_t> closed_top_pieces(const CellComplex& cc) {
   const int m = cc.manifold_dimension;
   const CellLevel& top = cc.interior[m];
   UnionFind pieces(top.size());
-  std::vector<std::uint32_t> first(cc.interior[m - 1].size(), CellLevel::kNone);
+  HugeVector<std::uint32_t> first(cc.interior[m - 1].size(), CellLevel::kNone);
   for (std::uint32_t c = 0; c < top.size(); ++c)
     for (std::uint32_t f : top.facets(c))
       if (first[f] == CellLevel::kNone)
         first[f] = c;
       else
         pieces.unite(first[f], c);
-  std::vector<std::uint8_t> open(top.size(), 0);
+  HugeVector<std::uint8_t> open(top.size(), 0);
   if (!top.boundary_facet.empty())
     for (std::uint32_t c = 0; c < top.size(); ++c)
       if (top.boundary_facet[c] != CellLevel::kNone) open[pieces.find(c)] = 1;
@@ -100,7 +101,8 @@ std::vector<std::size_t> betti_numbers(const CellComplex& cc, bool manifold) {
   const std::size_t vertices = cells.start(1, false);
   UnionFind components(vertices);
   const std::size_t first_edge = cells.start(1, false);
-  std::vector<std::uint8_t> tree_edge(cells.start(2, false) - first_edge, 0);  // a spanning forest's edges
+  // (arrays per cell as big blocks: the pages the cell complex freed, see topology.cpp)
+  HugeVector<std::uint8_t> tree_edge(cells.start(2, false) - first_edge, 0);  // a spanning forest's edges
   for (std::size_t g = first_edge; g < cells.start(2, false); ++g) {
     std::uint32_t ends[2] = {0, 0}, n = 0;
     cells.for_each_facet(g, [&](std::size_t v) { ends[n++ & 1] = static_cast<std::uint32_t>(v); });
@@ -120,9 +122,9 @@ std::vector<std::size_t> betti_numbers(const CellComplex& cc, bool manifold) {
     // Deletions start from one vertex per component, a 0-cycle that no chain bounds (removing it
     // lowers β_0 by one and changes nothing else), and spread along the spanning forest.
     if (cells.count() > UINT32_MAX) throw InputError("the complex has too many cells (2^32) for its topology");
-    std::vector<std::uint8_t> gone = std::move(tree_edge);  // per cell from the first edge to the top
+    HugeVector<std::uint8_t> gone = std::move(tree_edge);  // per cell from the first edge to the top
     gone.resize(cells.start(top + 1, false) - first_edge, 0);
-    std::vector<std::uint8_t> keep;  // (empty when nothing is left)
+    HugeVector<std::uint8_t> keep;  // (empty when nothing is left)
     if (coreduce_in_sweeps(cells, top, top < m, gone) > 0) {
       keep.assign(cells.count(), 0);
       for (std::size_t i = 0; i < gone.size(); ++i) keep[first_edge + i] = !gone[i];

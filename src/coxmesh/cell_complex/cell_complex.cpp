@@ -55,6 +55,9 @@ CellComplex build_cell_complex(TraceResult&& trace, int threads, bool keep_keys)
   const bool has_boundary = trace.boundary_simplices.size() > 0;
   cc.interior.resize(1);
   cc.interior[0].simplices = std::move(trace.simplices);
+  // (no interior cell is looked up once its level is built: each level's table goes at once, its
+  // pages to the next level; a boundary level's serves the boundary facets of the level above)
+  cc.interior[0].simplices.release_index();
   cc.interior[0].facet_offsets.assign(cc.interior[0].size() + 1, 0);
   cc.vertices = std::move(trace.points);
   if (m >= 1) {
@@ -68,6 +71,7 @@ CellComplex build_cell_complex(TraceResult&& trace, int threads, bool keep_keys)
   const auto drop_keys = [](CellLevel& level) { level.simplices = PackedKeyIndex::without_keys(level.size()); };
   for (int j = 1; j <= m; ++j) {
     cc.interior.push_back(cells::next_level_pipelined(cc.interior[j - 1], d, k + j, pool));
+    cc.interior[j].simplices.release_index();
     if (has_boundary && j <= m - 1)
       cc.boundary.push_back(cells::next_level_pipelined(cc.boundary[j - 1], d, k + 1 + j, pool));
     if (has_boundary) {  // the boundary facet of each cell of level j, in boundary level j − 1
@@ -83,6 +87,8 @@ CellComplex build_cell_complex(TraceResult&& trace, int threads, bool keep_keys)
     if (!keep_keys) {
       drop_keys(cc.interior[j - 1]);
       if (has_boundary) drop_keys(cc.boundary[j - 1]);
+    } else if (has_boundary) {
+      cc.boundary[j - 1].simplices.release_index();
     }
   }
   if (!has_boundary) cc.boundary.resize(std::max(m, 0));  // empty levels, uniform shape
@@ -93,8 +99,8 @@ CellComplex build_cell_complex(TraceResult&& trace, int threads, bool keep_keys)
   }
   for (auto& l : cc.boundary)
     if (l.simplices.words() != packed_words(d)) l.simplices = PackedKeyIndex(packed_words(d));
-  // The hash tables served the construction; the keys stay (files, tests), the tables go (a
-  // quarter to a third of the complex's memory, e.g. 176 MB of SO(3) ⊂ R⁹ at edge 1.1).
+  // The keys stay (files, tests); the last tables go (with the others, a quarter to a third of the
+  // complex's memory, e.g. 176 MB of SO(3) ⊂ R⁹ at edge 1.1).
   for (auto* levels : {&cc.interior, &cc.boundary})
     for (CellLevel& l : *levels) l.simplices.release_index();
   return cc;

@@ -2,19 +2,22 @@
 
 #include <algorithm>
 #include <bit>
-#include <memory>
 #include <random>
 
 #include "coxmesh/cell_complex/betti.h"
 #include "coxmesh/cell_complex/global_cells.h"
+#include "coxmesh/util/huge_page_allocator.h"
 
 namespace coxmesh {
 
 namespace {
 
 // Number of cofacets of each cell of `lower` among the cells of `upper` (same kind).
-std::vector<std::uint32_t> coface_counts(const CellLevel& lower, const CellLevel& upper) {
-  std::vector<std::uint32_t> count(lower.size(), 0);
+// (The topology's arrays per cell are big blocks: they take the pages the cell complex freed,
+// where fresh pages from the heap cost a page fault each, and a slow one on a virtual machine
+// whose host has taken them back.)
+HugeVector<std::uint32_t> coface_counts(const CellLevel& lower, const CellLevel& upper) {
+  HugeVector<std::uint32_t> count(lower.size(), 0);
   for (std::uint32_t f : upper.facet_ids) ++count[f];
   return count;
 }
@@ -35,14 +38,13 @@ std::string check_closed(const CellComplex& cc) {
   std::random_device entropy;
   const std::uint64_t seed = std::uint64_t{entropy()} << 32 ^ entropy();
   const auto label = [seed](std::size_t g) { return closedness_label(seed, g); };
-  // Per cell of levels j − 1 and j of this kind (written in full before being read: not zeroed;
-  // from the heap, whose pages the complex's building has already touched).
-  std::unique_ptr<std::uint64_t[]> below, fingerprint;
+  // Per cell of levels j − 1 and j of this kind (written in full before being read: not zeroed).
+  UninitializedHugeVector<std::uint64_t> below, fingerprint;
   for (int kind = 0; kind < 2; ++kind) {
     const auto& levels = kind ? cc.boundary : cc.interior;
     for (int j = 1; j < static_cast<int>(levels.size()); ++j) {
       const CellLevel& level = levels[j];
-      fingerprint = std::make_unique_for_overwrite<std::uint64_t[]>(level.size());
+      fingerprint.resize(level.size());
       const std::size_t facet_first = cells.start(j - 1, kind == 1);
       const bool cut = !kind && !level.boundary_facet.empty();
       const bool read_above = j + 1 < static_cast<int>(levels.size());  // (the top level's fingerprints: unused)
@@ -72,7 +74,7 @@ std::string check_closed(const CellComplex& cc) {
           return "a " + std::to_string(j) + "-cell is not closed (a face of its boundary is not shared)";
         fingerprint[c] = mine;
       }
-      below = std::move(fingerprint);
+      below.swap(fingerprint);
     }
   }
   return "";

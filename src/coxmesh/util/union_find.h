@@ -7,10 +7,12 @@
 #include <numeric>
 #include <vector>
 
+#include "coxmesh/util/huge_page_allocator.h"
+
 namespace coxmesh {
 
 struct UnionFind {
-  std::vector<std::uint32_t> parent;
+  HugeVector<std::uint32_t> parent;  // (big blocks: reused pages, huge_page_allocator.h)
 
   explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
   std::uint32_t find(std::uint32_t x) {
