@@ -16,13 +16,15 @@
 #include <vector>
 
 #include "coxmesh/cell_complex/cell_complex.h"
+#include "coxmesh/util/huge_page_allocator.h"
 
 namespace coxmesh {
 
 /// A list of lists of 32-bit ids in CSR form: list i is items[offsets[i] .. offsets[i+1]).
+/// (Big blocks: a writer's lists take the pages the cell complex freed, util/huge_page_allocator.h.)
 struct Ragged {
-  std::vector<std::uint32_t> offsets{0};
-  std::vector<std::uint32_t> items;
+  HugeVector<std::uint32_t> offsets{0};
+  HugeVector<std::uint32_t> items;
 
   std::uint32_t size() const { return static_cast<std::uint32_t>(offsets.size() - 1); }
   std::span<const std::uint32_t> operator[](std::uint32_t i) const {
