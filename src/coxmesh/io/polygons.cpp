@@ -326,7 +326,7 @@ void orient_polygons(Ragged& polygons, const Ragged& edges, std::uint32_t edge_c
   struct Uses {
     std::uint32_t side[2];
   };
-  std::vector<Uses> uses(edge_count, Uses{{kNone, kNone}});
+  HugeVector<Uses> uses(edge_count, Uses{{kNone, kNone}});  // (big blocks: polygons.h)
   // The passes below jump around memory (the breadth-first order is spatial, the arrays are in
   // discovery order): what a polygon a few steps ahead will read is prefetched.
   constexpr std::size_t kAhead = 8;
@@ -350,8 +350,8 @@ void orient_polygons(Ragged& polygons, const Ragged& edges, std::uint32_t edge_c
   auto reverse = [&](std::uint32_t p) {
     std::reverse(polygons.items.begin() + polygons.offsets[p] + 1, polygons.items.begin() + polygons.offsets[p + 1]);
   };
-  std::vector<std::uint8_t> state(n, 0);  // 0 unvisited, 1 kept, 2 reversed (its component turned outwards)
-  std::vector<std::uint32_t> component;   // breadth-first queue, then the component
+  HugeVector<std::uint8_t> state(n, 0);  // 0 unvisited, 1 kept, 2 reversed (its component turned outwards)
+  HugeVector<std::uint32_t> component;   // breadth-first queue, then the component
   for (std::uint32_t start = first; start < n; ++start) {
     if (state[start] || polygons[start].empty()) continue;
     state[start] = 1;
