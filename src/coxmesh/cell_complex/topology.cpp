@@ -44,6 +44,7 @@ std::string check_closed(const CellComplex& cc) {
     const auto& levels = kind ? cc.boundary : cc.interior;
     for (int j = 1; j < static_cast<int>(levels.size()); ++j) {
       const CellLevel& level = levels[j];
+      fingerprint.clear();  // (nothing to copy when it grows)
       fingerprint.resize(level.size());
       const std::size_t facet_first = cells.start(j - 1, kind == 1);
       const bool cut = !kind && !level.boundary_facet.empty();
