@@ -17,7 +17,7 @@ std::vector<std::size_t> betti_numbers_by_reduction(const CellComplex& cc, std::
   // (32-bit: the array spans all cells, of which few may be kept)
   if (n >= UINT32_MAX) throw InputError("the complex has too many cells (2^32) for its topology");
   constexpr std::uint32_t kDropped = UINT32_MAX;
-  HugeVector<std::uint32_t> column(n, kDropped);  // (big blocks: see topology.cpp)
+  HugeVector<std::uint32_t> column(n, kDropped);  // (big blocks: util/huge_page_allocator.h)
   std::vector<int> dim_of;
   std::vector<std::uint32_t> cell_of;  // the inverse of column
   for (int j = 0; j <= m; ++j)

@@ -101,7 +101,7 @@ std::vector<std::size_t> betti_numbers(const CellComplex& cc, bool manifold) {
   const std::size_t vertices = cells.start(1, false);
   UnionFind components(vertices);
   const std::size_t first_edge = cells.start(1, false);
-  // (arrays per cell as big blocks: the pages the cell complex freed, see topology.cpp)
+  // (arrays per cell as big blocks: util/huge_page_allocator.h)
   HugeVector<std::uint8_t> tree_edge(cells.start(2, false) - first_edge, 0);  // a spanning forest's edges
   for (std::size_t g = first_edge; g < cells.start(2, false); ++g) {
     std::uint32_t ends[2] = {0, 0}, n = 0;

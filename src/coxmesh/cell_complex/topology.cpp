@@ -12,10 +12,8 @@ namespace coxmesh {
 
 namespace {
 
-// Number of cofacets of each cell of `lower` among the cells of `upper` (same kind).
-// (The topology's arrays per cell are big blocks: they take the pages the cell complex freed,
-// where fresh pages from the heap cost a page fault each, and a slow one on a virtual machine
-// whose host has taken them back.)
+// Number of cofacets of each cell of `lower` among the cells of `upper` (same kind). (The topology's
+// arrays per cell are big blocks: util/huge_page_allocator.h.)
 HugeVector<std::uint32_t> coface_counts(const CellLevel& lower, const CellLevel& upper) {
   HugeVector<std::uint32_t> count(lower.size(), 0);
   for (std::uint32_t f : upper.facet_ids) ++count[f];

@@ -326,7 +326,7 @@ void orient_polygons(Ragged& polygons, const Ragged& edges, std::uint32_t edge_c
   struct Uses {
     std::uint32_t side[2];
   };
-  HugeVector<Uses> uses(edge_count, Uses{{kNone, kNone}});  // (big blocks: polygons.h)
+  HugeVector<Uses> uses(edge_count, Uses{{kNone, kNone}});  // (big blocks: util/huge_page_allocator.h)
   // The passes below jump around memory (the breadth-first order is spatial, the arrays are in
   // discovery order): what a polygon a few steps ahead will read is prefetched.
   constexpr std::size_t kAhead = 8;

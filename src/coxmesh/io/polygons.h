@@ -21,7 +21,7 @@
 namespace coxmesh {
 
 /// A list of lists of 32-bit ids in CSR form: list i is items[offsets[i] .. offsets[i+1]).
-/// (Big blocks: a writer's lists take the pages the cell complex freed, util/huge_page_allocator.h.)
+/// (Big blocks: util/huge_page_allocator.h.)
 struct Ragged {
   HugeVector<std::uint32_t> offsets{0};
   HugeVector<std::uint32_t> items;

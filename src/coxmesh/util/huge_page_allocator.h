@@ -1,8 +1,11 @@
-// An allocator for the big flat arrays of coxmesh (hash tables, key arrays, points, incidences):
-// blocks of 2 MiB and more are mapped directly, 2 MiB-aligned and rounded up to whole 2 MiB pages,
-// so they arrive zero-filled by the kernel (zeroed_huge_vector does not zero them again) and can be
-// backed by transparent huge pages; freed, they are kept a while for the next ones (big_blocks
-// below). Smaller blocks come from operator new as usual.
+// An allocator for the big flat arrays of coxmesh (hash tables, key arrays, points, incidences,
+// and any array per cell or per simplex): blocks of 2 MiB and more are mapped directly, 2
+// MiB-aligned and rounded up to whole 2 MiB pages, so they arrive zero-filled by the kernel
+// (zeroed_huge_vector does not zero them again) and can be backed by transparent huge pages; freed,
+// they are kept for the next ones (big_blocks below), so that a later phase (the topology, a
+// writer) takes the pages an earlier one freed instead of fresh ones from the heap, each a page
+// fault, and a slow one on a virtual machine whose host has taken the page back.
+// Smaller blocks come from operator new as usual.
 // Huge pages are asked for (madvise) only with COXMESH_HUGE_PAGES=1 in the environment: where the
 // system enables them for all memory they are used anyway, and asking for them is a gamble. On a
 // virtual machine that backs its memory lazily, the first touch of a huge page cost 30 times the

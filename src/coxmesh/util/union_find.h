@@ -12,7 +12,7 @@
 namespace coxmesh {
 
 struct UnionFind {
-  HugeVector<std::uint32_t> parent;  // (big blocks: reused pages, huge_page_allocator.h)
+  HugeVector<std::uint32_t> parent;  // (big blocks: huge_page_allocator.h)
 
   explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
   std::uint32_t find(std::uint32_t x) {
