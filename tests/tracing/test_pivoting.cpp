@@ -220,7 +220,7 @@ TEST(Pivoting, PipelineAsksAsOtherTransverseFacet) {
           const walk::Found one =
               walk::other_transverse_facet(oracle, pivots, tau, tau_key, arrival, *mu, classifier(asked_one));
           walk::PendingCofacet p;
-          walk::Found piped{walk::Kind::miss, 0};
+          walk::Found piped{walk::Kind::miss, 0, walk::kArrival};  // (what take_cofacet passes by)
           if (walk::take_cofacet(oracle, pivots, tau, walk::ArrivalVertex<>(tau_key, arrival, tau.d), *mu, p)) {
             if (walk::guess_other_facet(oracle, pivots, p)) {
               ++guessed;

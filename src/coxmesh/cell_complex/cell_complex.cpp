@@ -70,7 +70,10 @@ CellComplex build_cell_complex(TraceResult&& trace, int threads, bool keep_keys)
   // a lower peak)
   const auto drop_keys = [](CellLevel& level) { level.simplices = PackedKeyIndex::without_keys(level.size()); };
   for (int j = 1; j <= m; ++j) {
-    cc.interior.push_back(cells::next_level_pipelined(cc.interior[j - 1], d, k + j, pool));
+    if (j == 1 && !trace.cofacets.empty())  // (met by the walk, numbered as the pipeline numbers them)
+      cc.interior.push_back(cells::level_from_walk(std::move(trace.cofacets), cc.interior[0], d, pool));
+    else
+      cc.interior.push_back(cells::next_level_pipelined(cc.interior[j - 1], d, k + j, pool));
     cc.interior[j].simplices.release_index();
     if (has_boundary && j <= m - 1)
       cc.boundary.push_back(cells::next_level_pipelined(cc.boundary[j - 1], d, k + 1 + j, pool));

@@ -175,4 +175,36 @@ CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& 
   return level;
 }
 
+// Each worker takes a range of the cofacets, and enumerates the cofacets of each first facet in the
+// range once, keeping the keys of the places named (in increasing order per facet).
+CellLevel level_from_walk(WalkedCofacets&& walked, const CellLevel& vertices, int d, WorkerPool& pool) {
+  const std::size_t n = walked.size(), words = static_cast<std::size_t>(packed_words(d));
+  COXMESH_ASSERT(walked.facet_offsets.size() == n + 1 && walked.facet_ids.size() == walked.facet_offsets[n]);
+  UninitializedHugeVector<std::uint32_t> keys(n * words);
+  const std::size_t parts = static_cast<std::size_t>(pool.size());
+  const auto first_facet = [&](std::size_t c) { return walked.facet_ids[walked.facet_offsets[c]]; };
+  pool.run(parts, [&](std::size_t p, int) {
+    with_fixed_dimension<2, 3, 4, 6, 9>(d, [&](auto fixed_d) {
+      constexpr int kD = decltype(fixed_d)::value;
+      const std::size_t end = n * (p + 1) / parts;
+      for (std::size_t c = n * p / parts; c < end;) {
+        const std::uint32_t tau = first_facet(c);
+        std::size_t group_end = c;
+        while (group_end < end && first_facet(group_end) == tau) ++group_end;
+        std::uint32_t place = 0;
+        PackedCofacets<kD>(vertices.simplices.key(tau), d).for_each([&](const std::uint32_t* nu, std::uint64_t) {
+          if (c < group_end && walked.places[c] == place) std::copy_n(nu, words, keys.data() + c++ * words);
+          ++place;
+        });
+        if (c != group_end) throw std::logic_error("level_from_walk: a cofacet's place is past its facet's cofacets");
+      }
+    });
+  });
+  CellLevel level;
+  level.simplices = PackedKeyIndex::from_keys(static_cast<int>(words), std::move(keys));
+  level.facet_offsets = std::move(walked.facet_offsets);
+  level.facet_ids = std::move(walked.facet_ids);
+  return level;
+}
+
 }  // namespace coxmesh::cells

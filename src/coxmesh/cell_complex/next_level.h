@@ -16,4 +16,8 @@ CellLevel next_level_plain(const CellLevel& prev, int d, int l);
 /// The same level, by the workers of `pool`.
 CellLevel next_level_pipelined(const CellLevel& prev, int d, int l, WorkerPool& pool);
 
+/// Level 1 from the cofacets of level 0 (S) that the walk met (TraceOptions::keep_cofacets): the
+/// same level as next_level_pipelined's, their keys made by the workers of `pool`.
+CellLevel level_from_walk(WalkedCofacets&& walked, const CellLevel& vertices, int d, WorkerPool& pool);
+
 }  // namespace coxmesh::cells

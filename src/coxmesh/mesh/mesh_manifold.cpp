@@ -90,6 +90,7 @@ MeshReport mesh_manifold(const Triangulation& t, const ManifoldMaker& make, cons
   TraceOptions trace = o.trace;
   trace.skip_unusable_seeds |= seeds.skip_unusable;
   trace.threads = resolve_threads(o.trace.threads);
+  trace.keep_cofacets = true;  // (the complex's cells of dimension 1, met by the walk)
   const std::uint64_t by_memory =
       o.max_memory ? o.max_memory / estimated_bytes_per_simplex(d - f->codimension()) : ~std::uint64_t{0};
   const bool memory_binds = by_memory < trace.max_simplices;

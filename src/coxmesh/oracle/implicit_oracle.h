@@ -40,6 +40,7 @@ class ImplicitOracle final : public IntersectionOracle {
   int ambient_dimension() const override { return d_; }
   int codimension() const override { return k_; }
   bool has_domain() const override { return domain_ != nullptr; }
+  bool two_transverse_facets() const override { return true; }  // (exact signs: thesis §4.2)
   Intersection intersect(const Simplex& tau, double* point) override;
   std::uint64_t function_evaluations() const override { return evaluations_; }
   bool pivot_enter(const Simplex& tau) override;

@@ -29,6 +29,13 @@ class IntersectionOracle {
   /// Number of function evaluations so far (implicit oracles count one per lattice vertex).
   virtual std::uint64_t function_evaluations() const { return 0; }
 
+  /// True when the oracle promises what the thesis proves of the PL approximation of a regular
+  /// level set (§4.2): every cofacet μ of a transverse k-simplex meets M̂ on exactly two of its
+  /// facets. The walk then meets each cell of dimension 1 of the cell complex with both its
+  /// vertices and can keep them (TraceOptions::keep_cofacets; it keeps none when their incidences
+  /// do not add up). False by default: a point cloud's local approximations need not agree
+  /// between neighbouring simplices.
+  virtual bool two_transverse_facets() const { return false; }
   /// Optional door-in/door-out guess (the pivoting step of PL continuation, thesis §4.2). M̂ meets
   /// each cofacet μ of a transverse k-simplex τ in a segment whose ends lie on exactly two facets of
   /// μ: τ and one other. After pivot_enter(τ) returned true, pivot_exit(v) guesses that other facet

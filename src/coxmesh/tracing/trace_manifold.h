@@ -27,11 +27,29 @@ struct TraceOptions {
   /// progress_interval simplices, with |S| so far (progress displays; it may throw to cancel).
   std::function<void(std::size_t traced)> progress;
   std::size_t progress_interval = 65536;
+  /// Keep the cofacets of S that the walk meets (TraceResult::cofacets), so that build_cell_complex
+  /// takes its cells of dimension 1 from them instead of enumerating and numbering them again. The
+  /// walk keeps them only where it meets each with all its facets in S: a complete walk, an oracle
+  /// that promises two transverse facets per cofacet (IntersectionOracle::two_transverse_facets).
+  bool keep_cofacets = false;
 };
 
 /// A walk stopped by the simplex limit leaves cells open at its front: its cell complex is not
 /// closed, so its topology is not reported. (A box bounds the walk as a domain: box_domain().)
 enum class TraceStatus { complete, max_simplices_reached };
+
+/// The cofacets μ of the simplices of S, each with the simplices of S among its facets: the cells of
+/// dimension 1 of the cell complex (μ ∩ M̂, a segment between two vertices, or one vertex and the
+/// domain's boundary), numbered as build_cell_complex numbers them: by their first facet in S, then
+/// in that facet's cofacet order (CofaceEnumerator). A cofacet is named by its first facet and its
+/// place in that order, not by its key: 4 bytes instead of a key's 4 (d + ⌈(d + 1)/4⌉), and the
+/// walk does not pack it.
+struct WalkedCofacets {
+  IndexArray facet_offsets, facet_ids;  ///< CSR: ids in S of the facets of each, increasing
+  IndexArray places;                    ///< per cofacet, its place among its first facet's cofacets
+  std::uint32_t size() const { return static_cast<std::uint32_t>(places.size()); }
+  bool empty() const { return places.empty(); }
+};
 
 /// The output of tracing (thesis §4.2): S = the k-simplices meeting M̂ inside the domain, each with
 /// its intersection point, and S_∂ = the (k+1)-simplices meeting M̂ ∩ ∂D̂, with theirs. Ids are
@@ -42,6 +60,7 @@ struct TraceResult {
   PointArray points;                     ///< |S| × d intersection points
   PackedKeyIndex boundary_simplices{1};  ///< S_∂: packed (k+1)-simplices
   PointArray boundary_points;            ///< |S_∂| × d
+  WalkedCofacets cofacets;               ///< with TraceOptions::keep_cofacets, if kept (else empty)
   TraceStatus status = TraceStatus::complete;
   std::string message;  ///< why tracing stopped early (empty when complete)
   std::uint64_t oracle_calls = 0, function_evaluations = 0;

@@ -24,6 +24,8 @@ struct Found {
   std::uint32_t index;  // where the walk keeps the simplex (S id, or its point and D̂)
   int facet = -1;       // which facet of μ it is (the index of the vertex of μ it lacks)
 };
+// Found::facet of a miss: μ is the cofacet τ was discovered through (other_transverse_facet).
+constexpr int kArrival = -2;
 
 // The per-cofacet lattice work below takes kD ≠ 0 when every simplex has d = kD, fixed at compile
 // time so that its loops over d and over the packed words unroll (the sequential walk picks kD once,
@@ -77,7 +79,7 @@ Found other_transverse_facet(IntersectionOracle& oracle, bool pivots, const Simp
   const int entry = extra_vertex_index(tau, mu);  // μ without its vertex `entry` is τ
   std::int32_t v[kMaxDimension];
   mu.vertex(entry, v);
-  if (arrival != kNoCofacet && cofacet_code(v, tau_key, tau.d) == arrival) return {Kind::miss, 0};
+  if (arrival != kNoCofacet && cofacet_code(v, tau_key, tau.d) == arrival) return {Kind::miss, 0, kArrival};
   int guess = -1;
   if (pivots) {
     if (const int g = oracle.pivot_exit(v); g >= 0) {

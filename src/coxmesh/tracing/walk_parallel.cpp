@@ -16,7 +16,7 @@ ParallelWalk::ParallelWalk(SequentialWalk& walk, const std::vector<IntersectionO
     : s_(walk), d_(walk.d_), k_(walk.k_) {
   for (IntersectionOracle* o : oracles) {
     const PackedKeyIndex empty(packed_words(d_));
-    workers_.push_back(Worker{o, empty, {}, {}, {}, 0, {empty, empty}, {{0, 0}, {0, 0}}});
+    workers_.push_back(Worker{o, empty, {}, {}, {}, {}, 0, {empty, empty}, {{0, 0}, {0, 0}}});
   }
 }
 
@@ -41,8 +41,9 @@ void ParallelWalk::walk() {
 }
 
 ParallelWalk::Mark ParallelWalk::mark() const {
-  return {s_.head_, s_.result_.simplices.size(), s_.result_.boundary_simplices.size(), s_.last_progress_,
-          s_.result_.status};
+  return {s_.head_,          s_.result_.simplices.size(), s_.result_.boundary_simplices.size(),
+          s_.last_progress_, s_.result_.status,           s_.cofacet_places_.size(),
+          s_.cofacets_met_};
 }
 
 void ParallelWalk::undo(const Mark& m) {
@@ -57,6 +58,12 @@ void ParallelWalk::undo(const Mark& m) {
   s_.result_.boundary_points.resize(b * d_);
   s_.last_progress_ = m.last_progress;
   s_.result_.status = m.status;
+  if (s_.keep_cofacets_) {
+    s_.cofacet_places_.resize(m.kept_cofacets);
+    s_.cofacet_offsets_.resize(m.kept_cofacets + 1);
+    s_.cofacet_facets_.resize(s_.cofacet_offsets_.back());
+    s_.cofacets_met_ = m.cofacets_met;
+  }
 }
 
 // False when S, indexed on the way, holds a simplex twice (see walk).
@@ -74,7 +81,8 @@ bool ParallelWalk::walk_levels() {
     const std::size_t n = (end - begin + chunk - 1) / chunk;
     std::vector<ChunkOutput>& outputs = chunks_[current_];
     if (outputs.size() < n) outputs.resize(n);
-    for (Worker& w : workers_) w.tested.clear(), w.payload.clear(), w.output_in.clear(), w.data.clear();
+    for (Worker& w : workers_)
+      w.tested.clear(), w.payload.clear(), w.output_in.clear(), w.output_row.clear(), w.data.clear();
     if (!pool_) pool_ = std::make_unique<WorkerPool>(static_cast<int>(workers_.size()));
     claims_.reset(n, workers_.size());
     pool_->run(workers_.size(), [&](std::size_t share, int worker) {
@@ -88,6 +96,7 @@ bool ParallelWalk::walk_levels() {
     });
     pending_ = {0, 0};  // (the workers copied the level in)
     merge(n);
+    if (s_.keep_cofacets_) keep_cofacets(n);
     s_.head_ = end;
     if (4 * s_.result_.simplices.unindexed() > 3 * s_.result_.simplices.size()) {
       fill_pending();
@@ -109,12 +118,16 @@ void ParallelWalk::process_chunk(std::uint32_t chunk, std::uint32_t begin, std::
     tau = unpack(tau_key, d_);
     const bool pivots = worker.oracle->pivot_enter(tau);
     cofacets.reset(tau, k_ + 1);
-    while (const Simplex* cofacet = cofacets.next()) {
+    std::uint32_t place = 0;  // μ's among τ's cofacets
+    for (const Simplex* cofacet; (cofacet = cofacets.next()) != nullptr; ++place) {
       const Simplex& mu = *cofacet;
       const std::size_t known = out.inside_arrivals.size();
+      std::uint64_t other = kMiss;
       const Found f =
           other_transverse_facet(*worker.oracle, pivots, tau, tau_key, s_.arrivals_[id], mu,
-                                 [&](const Simplex& s) { return classify_in_level(s, chunk, worker, out); });
+                                 [&](const Simplex& s) { return classify_in_level(s, chunk, worker, out, other); });
+      if (s_.keep_cofacets_ && f.facet != kArrival && (f.kind != Kind::inside || other > id))  // (a row: > id)
+        out.kept.push_back({id, place, f.kind == Kind::inside ? other : kMiss});
       if (f.kind == Kind::inside && out.inside_arrivals.size() > known)  // first found now, through μ
         out.inside_arrivals.back() =
             arrival_code(mu, f.facet, out.inside_keys.data() + out.inside_keys.size() - words, d_);
@@ -125,6 +138,7 @@ void ParallelWalk::process_chunk(std::uint32_t chunk, std::uint32_t begin, std::
       out.boundary_keys.insert(out.boundary_keys.end(), mu_key, mu_key + words);
       append_boundary_point(out.boundary_points, p, s_.domain_values_[id], worker.data.data() + f.index, d_);
     }
+    out.cofacets_met += place;
   }
 }
 
@@ -132,14 +146,18 @@ void ParallelWalk::process_chunk(std::uint32_t chunk, std::uint32_t begin, std::
 // The merge keeps the first occurrence in chunk order, so a new simplex is output by each chunk of
 // the worker that meets it before every chunk that output it so far (chunks are taken in no fixed
 // order).
-Found ParallelWalk::classify_in_level(const Simplex& tau, std::uint32_t chunk, Worker& worker, ChunkOutput& out) {
+Found ParallelWalk::classify_in_level(const Simplex& tau, std::uint32_t chunk, Worker& worker, ChunkOutput& out,
+                                      std::uint64_t& other) {
   const int words = packed_words(d_);
   std::uint32_t key[packed_words(kMaxDimension)];
   pack(tau, key);
   const std::uint64_t h = hash_words(key, words);
   // (a simplex of an older level, which only a degenerate oracle could show, would be tested again
   // and output: see walk)
-  if (std::uint32_t id = find_near(worker, key, h); id != PackedKeyIndex::kAbsent) return {Kind::inside, id};
+  if (std::uint32_t id = find_near(worker, key, h); id != PackedKeyIndex::kAbsent) {
+    other = id;
+    return {Kind::inside, id};
+  }
   // (no structured binding: clang 14 cannot capture one in a lambda)
   const std::pair<std::uint32_t, bool> inserted = worker.tested.insert(key, h);
   const std::uint32_t id = inserted.first;
@@ -150,9 +168,11 @@ Found ParallelWalk::classify_in_level(const Simplex& tau, std::uint32_t chunk, W
     out.inside_arrivals.push_back(kNoCofacet);  // set by process_chunk
     out.inside_data.insert(out.inside_data.end(), found, found + d_ + 1);
     worker.output_in[id] = chunk;
+    worker.output_row[id] = static_cast<std::uint32_t>(out.inside_hashes.size() - 1);
   };
   if (fresh) {
     worker.output_in.push_back(kMiss);
+    worker.output_row.push_back(0);
     ++worker.calls;
     double found[kMaxDimension + 1];  // point, D̂
     const Intersection x = worker.oracle->intersect(tau, found);
@@ -169,6 +189,7 @@ Found ParallelWalk::classify_in_level(const Simplex& tau, std::uint32_t chunk, W
   if (p == kMiss) return {Kind::miss, 0};
   if (worker.data[p + d_] >= 0) return {Kind::outside, p};
   if (chunk < worker.output_in[id]) output(worker.data.data() + p);
+  other = ChunkOutput::kRow | std::uint64_t{worker.output_in[id]} << 32 | worker.output_row[id];
   return {Kind::inside, p};
 }
 
@@ -208,7 +229,7 @@ inline std::uint32_t ParallelWalk::find_near(const Worker& worker, const std::ui
 // and appended to S unindexed. S's arrays grow here; each simplex is copied in by the worker that
 // takes it in the next level (fill), so that the copying and its page faults are shared.
 void ParallelWalk::merge(std::size_t n_chunks) {
-  const std::vector<ChunkOutput>& outputs = chunks_[current_];
+  std::vector<ChunkOutput>& outputs = chunks_[current_];
   const int words = packed_words(d_);
   std::size_t rows = 0;
   for (std::size_t c = 0; c < n_chunks; ++c) rows += outputs[c].inside_hashes.size();
@@ -217,8 +238,10 @@ void ParallelWalk::merge(std::size_t n_chunks) {
   const LinearProbe probe(capacity);
   firsts_.assign(capacity, 0);
   sources_.clear();
+  const std::uint32_t first = s_.result_.simplices.size();
   for (std::size_t c = 0; c < n_chunks; ++c) {
-    const ChunkOutput& out = outputs[c];
+    ChunkOutput& out = outputs[c];
+    out.inside_ids.resize(out.inside_hashes.size());
     for (std::size_t r = 0; r < out.inside_hashes.size(); ++r) {
       const std::uint32_t tag = LinearProbe::tag_of(out.inside_hashes[r]);
       const std::uint32_t* key = out.inside_keys.data() + r * words;
@@ -231,11 +254,13 @@ void ParallelWalk::merge(std::size_t n_chunks) {
         firsts_[s] = LinearProbe::entry(out.inside_hashes[r], static_cast<std::uint32_t>(sources_.size() + 1));
         sources_.push_back(c << 32 | r);
       }
+      out.inside_ids[r] = first + LinearProbe::payload(firsts_[s]) - 1;
     }
   }
   TraceResult& result = s_.result_;
   const std::uint32_t added = static_cast<std::uint32_t>(sources_.size());
-  const std::uint32_t first = result.simplices.append_unindexed(added);
+  const std::uint32_t appended_at = result.simplices.append_unindexed(added);
+  COXMESH_ASSERT(appended_at == first);
   const std::size_t size = std::size_t{first} + added;
   grow_with_headroom(result.points, size * d_);
   grow_with_headroom(s_.domain_values_, size);
@@ -250,6 +275,21 @@ void ParallelWalk::merge(std::size_t n_chunks) {
       }
   }
   current_ ^= 1;  // the next level keeps these outputs to copy from
+}
+
+// The level's kept cofacets in chunk order (the sequential walk's), their other facets named by ids.
+void ParallelWalk::keep_cofacets(std::size_t n_chunks) {
+  const std::vector<ChunkOutput>& outputs = chunks_[current_ ^ 1];  // (merge has turned the buffers)
+  for (std::size_t c = 0; c < n_chunks && s_.keep_cofacets_; ++c) {
+    for (const ChunkOutput::KeptCofacet& k : outputs[c].kept) {
+      const std::uint32_t other =
+          (k.other & ChunkOutput::kRow) == 0
+              ? static_cast<std::uint32_t>(k.other)
+              : outputs[k.other >> 32 & 0x7FFFFFFFu].inside_ids[static_cast<std::uint32_t>(k.other)];
+      s_.keep_cofacet(k.tau, k.place, other);
+    }
+    s_.cofacets_met_ += outputs[c].cofacets_met;
+  }
 }
 
 // Copies the simplices of S with ids in [begin, end) that the last merge appended in from the

@@ -34,9 +34,20 @@ class ParallelWalk {
     std::vector<std::uint32_t> inside_keys, boundary_keys;
     std::vector<std::uint64_t> inside_hashes, inside_arrivals;
     std::vector<double> inside_data, boundary_points;
+    std::vector<std::uint32_t> inside_ids;  // per inside simplex, its id in S (set by the merge)
+    // The cofacets kept (TraceOptions::keep_cofacets), as SequentialWalk keeps them; `other` is an
+    // id of S, kMiss, or kRow | chunk << 32 | row: an inside simplex output by a chunk of the level.
+    struct KeptCofacet {
+      std::uint32_t tau, place;
+      std::uint64_t other;
+    };
+    static constexpr std::uint64_t kRow = std::uint64_t{1} << 63;
+    std::vector<KeptCofacet> kept;
+    std::uint64_t cofacets_met = 0;
     void clear() {
       inside_keys.clear(), boundary_keys.clear(), inside_hashes.clear(), inside_arrivals.clear(), inside_data.clear(),
-          boundary_points.clear();
+          boundary_points.clear(), inside_ids.clear(), kept.clear();
+      cofacets_met = 0;
     }
   };
   // A worker's oracle and its memory of the simplices it tested in the current level that were not
@@ -44,9 +55,10 @@ class ParallelWalk {
   struct alignas(64) Worker {
     IntersectionOracle* oracle;
     PackedKeyIndex tested;
-    std::vector<std::uint32_t> payload;    // kMiss or index into data
-    std::vector<std::uint32_t> output_in;  // per tested simplex inside: the first chunk that output it
-    std::vector<double> data;              // (d + 1) per transverse simplex: point, D̂
+    std::vector<std::uint32_t> payload;     // kMiss or index into data
+    std::vector<std::uint32_t> output_in;   // per tested simplex inside: the first chunk that output it
+    std::vector<std::uint32_t> output_row;  // and its row there
+    std::vector<double> data;               // (d + 1) per transverse simplex: point, D̂
     std::uint64_t calls;
     // The simplices of S that a level's walk can meet: its own and the previous level's (a
     // neighbour of a simplex of level L is in level L − 1, L or L + 1). Two small indexes of
@@ -85,13 +97,18 @@ class ParallelWalk {
     std::uint32_t head, simplices, boundary_simplices;
     std::size_t last_progress;
     TraceStatus status;
+    std::size_t kept_cofacets;
+    std::uint64_t cofacets_met;
   };
 
   bool walk_levels();
   Mark mark() const;
   void undo(const Mark& m);
   void process_chunk(std::uint32_t chunk, std::uint32_t begin, std::uint32_t end, Worker& worker, ChunkOutput& out);
-  Found classify_in_level(const Simplex& tau, std::uint32_t chunk, Worker& worker, ChunkOutput& out);
+  // (`other`: where an inside simplex is, as ChunkOutput::KeptCofacet::other)
+  Found classify_in_level(const Simplex& tau, std::uint32_t chunk, Worker& worker, ChunkOutput& out,
+                          std::uint64_t& other);
+  void keep_cofacets(std::size_t n_chunks);
   void open_windows(Worker& worker) const;
   static inline std::uint32_t find_near(const Worker& worker, const std::uint32_t* key, std::uint64_t hash);
   const std::uint32_t* source_key(const std::vector<ChunkOutput>& outputs, std::uint64_t source) const {

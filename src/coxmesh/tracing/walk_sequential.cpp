@@ -15,15 +15,25 @@ SequentialWalk::SequentialWalk(const Triangulation& t, IntersectionOracle& oracl
       options_(options),
       d_(t.dimension()),
       k_(oracle.codimension()),
-      others_(packed_words(d_)) {
+      others_(packed_words(d_)),
+      keep_cofacets_(options.keep_cofacets && oracle.two_transverse_facets() && oracle.codimension() < d_) {
   result_.ambient_dimension = d_;
   result_.codimension = k_;
   result_.simplices = PackedKeyIndex(packed_words(d_));
   result_.boundary_simplices = PackedKeyIndex(packed_words(d_));
+  if (keep_cofacets_) cofacet_offsets_.assign(1, 0);
 }
 
 TraceResult SequentialWalk::finish() {
   result_.oracle_calls += calls_;
+  // Each cofacet of S has all its facets in S among the kept ones (every incidence of S's cofacets
+  // accounted for) when the walk went everywhere and met each cofacet's two transverse facets.
+  if (keep_cofacets_ && result_.status == TraceStatus::complete && cofacet_facets_.size() == cofacets_met_) {
+    WalkedCofacets& c = result_.cofacets;
+    c.facet_offsets = std::move(cofacet_offsets_);
+    c.facet_ids = std::move(cofacet_facets_);
+    c.places = std::move(cofacet_places_);
+  }
   return std::move(result_);
 }
 
@@ -83,6 +93,7 @@ void SequentialWalk::walk_from_head() {
       if (take_cofacet<kD>(oracle_, pivots, tau, arrival, *mu, p)) ++taken, advance(kGuessLag, kFetchLag, kTestLag);
     }
     while (guessed < taken) advance(0, kFetchLag, kTestLag);
+    cofacets_met_ += index;
   }
 }
 
@@ -93,10 +104,26 @@ void SequentialWalk::finish_cofacet(const PendingCofacet& p) {
   const Found f = classify_pending<kD>(
       p, [this](const Simplex& s, const std::uint32_t* key, std::uint64_t h) { return classify(s, key, h); },
       [this](const Simplex& s) { return classify<kD>(s); });
+  if (keep_cofacets_ && (f.kind != Kind::inside || f.index > p.tau))
+    keep_cofacet(p.tau, p.index, f.kind == Kind::inside ? f.index : kMiss);
   if (f.kind == Kind::miss) return;
   if (f.kind == Kind::outside) add_boundary(p.mu, p.tau, outside_.data() + f.index);
   if (f.kind == Kind::inside && f.index >= known)  // discovered now, through μ
     arrivals_[f.index] = arrival_code<kD>(p.mu, f.facet, result_.simplices.key(f.index), d_);
+}
+
+// μ, met first from τ: its place among τ's cofacets, and τ and its other transverse facet if that is
+// in S (from where the walk meets μ again, and passes it by: its id is bigger than τ's).
+void SequentialWalk::keep_cofacet(std::uint32_t tau, std::uint32_t place, std::uint32_t other) {
+  if (cofacet_places_.size() >= PackedKeyIndex::kMaxEntries) {  // (more than an index holds: not kept)
+    keep_cofacets_ = false;
+    cofacet_offsets_ = {}, cofacet_facets_ = {}, cofacet_places_ = {};
+    return;
+  }
+  cofacet_places_.push_back(place);
+  cofacet_facets_.push_back(tau);
+  if (other != kMiss) cofacet_facets_.push_back(other);
+  cofacet_offsets_.push_back(static_cast<std::uint32_t>(cofacet_facets_.size()));
 }
 
 // The simplex limit is checked where a breadth-first level starts, in the sequential and the

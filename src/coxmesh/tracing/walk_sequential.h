@@ -41,6 +41,7 @@ class SequentialWalk {
   void walk_from_head();
   template <int kD>
   void finish_cofacet(const PendingCofacet& p);
+  void keep_cofacet(std::uint32_t tau, std::uint32_t place, std::uint32_t other);  // other: an id of S or kMiss
 
   template <int kD>
   Found classify(const Simplex& tau);
@@ -63,6 +64,11 @@ class SequentialWalk {
   std::size_t last_progress_ = 0;
   std::uint64_t calls_ = 0;
   std::vector<double> point_;
+  // The cofacets kept (TraceOptions::keep_cofacets): each once, from its facet of smallest id, which
+  // the walk reaches first; with its other transverse facet when that is in S too.
+  bool keep_cofacets_ = false;
+  IndexArray cofacet_offsets_, cofacet_facets_, cofacet_places_;
+  std::uint64_t cofacets_met_ = 0;  // Σ over walked τ of its cofacets: the incidences the kept ones must have
 };
 
 }  // namespace coxmesh::walk
