@@ -191,12 +191,15 @@ CellLevel level_from_walk(WalkedCofacets&& walked, const CellLevel& vertices, in
         const std::uint32_t tau = first_facet(c);
         std::size_t group_end = c;
         while (group_end < end && first_facet(group_end) == tau) ++group_end;
+        std::size_t next = c;  // (of the group)
         std::uint32_t place = 0;
         PackedCofacets<kD>(vertices.simplices.key(tau), d).for_each([&](const std::uint32_t* nu, std::uint64_t) {
-          if (c < group_end && walked.places[c] == place) std::copy_n(nu, words, keys.data() + c++ * words);
+          if (next < group_end && walked.places[next] == place) std::copy_n(nu, words, keys.data() + next++ * words);
           ++place;
         });
-        if (c != group_end) throw std::logic_error("level_from_walk: a cofacet's place is past its facet's cofacets");
+        if (next != group_end)
+          throw std::logic_error("level_from_walk: a cofacet's place is past its facet's cofacets");
+        c = group_end;
       }
     });
   });
