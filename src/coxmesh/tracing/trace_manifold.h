@@ -42,8 +42,8 @@ enum class TraceStatus { complete, max_simplices_reached };
 /// dimension 1 of the cell complex (μ ∩ M̂, a segment between two vertices, or one vertex and the
 /// domain's boundary), numbered as build_cell_complex numbers them: by their first facet in S, then
 /// in that facet's cofacet order (CofaceEnumerator). A cofacet is named by its first facet and its
-/// place in that order, not by its key: 4 bytes instead of a key's 4 (d + ⌈(d + 1)/4⌉), and the
-/// walk does not pack it.
+/// place in that order, not by its key: 4 bytes instead of a key's 4·packed_words(d) (48 in R⁹),
+/// and the walk does not pack it.
 struct WalkedCofacets {
   IndexArray facet_offsets, facet_ids;  ///< CSR: ids in S of the facets of each, increasing
   IndexArray places;                    ///< per cofacet, its place among its first facet's cofacets
