@@ -230,6 +230,53 @@ void for_each_cofacet_vertex(const Simplex& tau, Emit&& emit) {
   }
 }
 
+/// The place among τ's cofacets, in the order of CofaceEnumerator(τ, k + 1), of the cofacet whose
+/// vertex not in τ is w; τ packed (`tau_key`, simplex.h), w one of its cofacets' new vertices. The
+/// inverse of the enumeration (thesis §3.5): w − v_b = e(A) names the block ω_b split and its part A
+/// put first; ω_b's last element t decides the half (t ∉ A: half 0, S = A; t ∈ A: half 1, S = ω_b ∖ A),
+/// and S, a Gray code over ω_b's other elements, the step. O(d), no enumeration. For a walk that
+/// meets a cofacet from one facet and would meet it again from the other (tracing/walk_sequential).
+template <int kD = 0>
+std::uint64_t cofacet_place(const std::uint32_t* tau_key, const std::int32_t* w, int d) {
+  if constexpr (kD != 0) d = kD;
+  const auto label = [&](int i) { return static_cast<int>((tau_key[d + (i >> 2)] >> 8 * (i & 3)) & 0xFFu); };
+  const int k = label(d);
+  std::uint32_t members[kMaxDimension + 1];  // per block, its elements as a bit set
+  for (int b = 0; b <= k; ++b) members[b] = 0;
+  members[k] = std::uint32_t{1} << d;
+  // c_i = w_i − y_i: 1 before ω_b, 0 after it, [i ∈ A] in it; all one less when d ∈ A (then b = k).
+  std::uint32_t zero = 0, minus = 0;
+  for (int i = 0; i < d; ++i) {
+    const std::int32_t c = w[i] - static_cast<std::int32_t>(tau_key[i]);
+    members[label(i)] |= std::uint32_t{1} << i;
+    zero |= std::uint32_t{c == 0} << i;
+    minus |= std::uint32_t{c < 0} << i;
+  }
+  int b = k;
+  std::uint32_t a;  // A
+  if (minus != 0) {
+    a = members[k] & ~minus;
+  } else {
+    zero |= std::uint32_t{1} << d;
+    b = 0;
+    while ((members[b] & zero) == 0) ++b;
+    a = members[b] & ~zero;
+  }
+  std::uint64_t place = 0;
+  for (int g = b + 1; g <= k; ++g) place += (std::uint64_t{1} << std::popcount(members[g])) - 2;
+  const std::uint32_t block = members[b];
+  const int t = 31 - std::countl_zero(block), n = std::popcount(block);
+  const bool half = (a >> t & 1) != 0;
+  const std::uint32_t s = half ? block & ~a : a;
+  std::uint32_t gray = 0;  // S over the block's first n − 1 elements, increasing
+  int j = 0;
+  for (std::uint32_t rest = block & ~(std::uint32_t{1} << t); rest != 0; rest &= rest - 1, ++j)
+    gray |= ((s >> std::countr_zero(rest)) & 1) << j;
+  std::uint32_t step = gray;  // the step whose Gray code is S
+  for (int shift = 1; shift < 32; shift <<= 1) step ^= step >> shift;
+  return place + (half ? (std::uint64_t{1} << (n - 1)) - 1 : 0) + step - 1;
+}
+
 /// Number of l-cofaces of τ (thesis §3.5): Σ over cut vectors of Π_i a(n_i, c_i + 1), where
 /// a(n, j) = j!·S(n, j) counts ordered partitions. Throws InputError only if the count, or a term
 /// it needs, exceeds 64 bits (e.g. the 21! maximal cofaces of a vertex in d = 20); cofacet counts

@@ -5,6 +5,7 @@
 #include "coxmesh/tracing/walk_parallel.h"
 
 #include <algorithm>
+#include <atomic>
 
 #include "coxmesh/lattice/cofaces.h"
 #include "coxmesh/util/huge_page_allocator.h"
@@ -54,6 +55,7 @@ void ParallelWalk::undo(const Mark& m) {
   s_.result_.points.resize(n * d_);
   s_.domain_values_.resize(n);
   s_.arrivals_.resize(n);
+  s_.settled_.resize(n);
   s_.result_.boundary_simplices.truncate(static_cast<std::uint32_t>(b));
   s_.result_.boundary_points.resize(b * d_);
   s_.last_progress_ = m.last_progress;
@@ -118,8 +120,10 @@ void ParallelWalk::process_chunk(std::uint32_t chunk, std::uint32_t begin, std::
     tau = unpack(tau_key, d_);
     const bool pivots = worker.oracle->pivot_enter(tau);
     cofacets.reset(tau, k_ + 1);
+    const std::uint64_t settled = std::atomic_ref<std::uint64_t>(s_.settled_[id]).load(std::memory_order_relaxed);
     std::uint32_t place = 0;  // μ's among τ's cofacets
     for (const Simplex* cofacet; (cofacet = cofacets.next()) != nullptr; ++place) {
+      if (place < 64 && (settled >> place & 1) != 0) continue;
       const Simplex& mu = *cofacet;
       const std::size_t known = out.inside_arrivals.size();
       std::uint64_t other = kMiss;
@@ -131,6 +135,7 @@ void ParallelWalk::process_chunk(std::uint32_t chunk, std::uint32_t begin, std::
       if (f.kind == Kind::inside && out.inside_arrivals.size() > known)  // first found now, through μ
         out.inside_arrivals.back() =
             arrival_code(mu, f.facet, out.inside_keys.data() + out.inside_keys.size() - words, d_);
+      if (s_.settle_cofacets_ && f.kind == Kind::inside && other > id) settle(mu, f.facet, other, out);
       if (f.kind != Kind::outside) continue;
       // μ crosses the boundary (see SequentialWalk::add_boundary; duplicates are dropped by the merge)
       const double* p = s_.result_.points.data() + static_cast<std::size_t>(id) * d_;
@@ -140,6 +145,22 @@ void ParallelWalk::process_chunk(std::uint32_t chunk, std::uint32_t begin, std::
     }
     out.cofacets_met += place;
   }
+}
+
+// SequentialWalk::settle for a level: μ was walked to its facet `facet`, `other` (as
+// ChunkOutput::KeptCofacet::other), a simplex of the next level (marked by the merge) or a later
+// one of this level (marked now: the worker walking it may pass μ by or not, and finds the same).
+void ParallelWalk::settle(const Simplex& mu, int facet, std::uint64_t other, ChunkOutput& out) {
+  std::int32_t w[kMaxDimension];
+  std::uint32_t key[packed_words(kMaxDimension)];
+  mu.vertex(facet, w);
+  pack(facet_without(mu, facet), key);
+  const std::uint64_t place = cofacet_place(key, w, d_);
+  if (place >= 64) return;
+  if ((other & ChunkOutput::kRow) != 0)
+    out.settled.push_back({other, static_cast<std::uint32_t>(place)});
+  else
+    std::atomic_ref<std::uint64_t>(s_.settled_[other]).fetch_or(std::uint64_t{1} << place, std::memory_order_relaxed);
 }
 
 // SequentialWalk::classify for a level: S is read-only during a level, so discoveries go to `out`.
@@ -227,7 +248,8 @@ inline std::uint32_t ParallelWalk::find_near(const Worker& worker, const std::ui
 // they are only deduplicated among themselves, in a small table of hash tags that reads a key only
 // when tags match (half the outputs were written by another core: every line read is a transfer),
 // and appended to S unindexed. S's arrays grow here; each simplex is copied in by the worker that
-// takes it in the next level (fill), so that the copying and its page faults are shared.
+// takes it in the next level (fill), so that the copying and its page faults are shared; their
+// settled cofacets are marked here.
 void ParallelWalk::merge(std::size_t n_chunks) {
   std::vector<ChunkOutput>& outputs = chunks_[current_];
   const int words = packed_words(d_);
@@ -265,6 +287,13 @@ void ParallelWalk::merge(std::size_t n_chunks) {
   grow_with_headroom(result.points, size * d_);
   grow_with_headroom(s_.domain_values_, size);
   grow_with_headroom(s_.arrivals_, size);
+  grow_with_headroom(s_.settled_, size);
+  std::fill(s_.settled_.data() + first, s_.settled_.data() + size, std::uint64_t{0});
+  for (std::size_t c = 0; c < n_chunks; ++c)
+    for (const ChunkOutput::Settled& m : outputs[c].settled) {
+      const std::uint32_t id = outputs[m.row >> 32 & 0x7FFFFFFFu].inside_ids[static_cast<std::uint32_t>(m.row)];
+      s_.settled_[id] |= std::uint64_t{1} << m.place;
+    }
   pending_ = {first, first + added};
   for (std::size_t c = 0; c < n_chunks; ++c) {
     const ChunkOutput& out = outputs[c];

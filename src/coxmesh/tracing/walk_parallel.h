@@ -43,10 +43,17 @@ class ParallelWalk {
     };
     static constexpr std::uint64_t kRow = std::uint64_t{1} << 63;
     std::vector<KeptCofacet> kept;
+    // Cofacets walked to a simplex of the next level (`row`: kRow | chunk << 32 | row), at their
+    // place among its cofacets: SequentialWalk::settled_, set by the merge.
+    struct Settled {
+      std::uint64_t row;
+      std::uint32_t place;
+    };
+    std::vector<Settled> settled;
     std::uint64_t cofacets_met = 0;
     void clear() {
       inside_keys.clear(), boundary_keys.clear(), inside_hashes.clear(), inside_arrivals.clear(), inside_data.clear(),
-          boundary_points.clear(), inside_ids.clear(), kept.clear();
+          boundary_points.clear(), inside_ids.clear(), kept.clear(), settled.clear();
       cofacets_met = 0;
     }
   };
@@ -109,6 +116,7 @@ class ParallelWalk {
   Found classify_in_level(const Simplex& tau, std::uint32_t chunk, Worker& worker, ChunkOutput& out,
                           std::uint64_t& other);
   void keep_cofacets(std::size_t n_chunks);
+  void settle(const Simplex& mu, int facet, std::uint64_t other, ChunkOutput& out);
   void open_windows(Worker& worker) const;
   static inline std::uint32_t find_near(const Worker& worker, const std::uint32_t* key, std::uint64_t hash);
   const std::uint32_t* source_key(const std::vector<ChunkOutput>& outputs, std::uint64_t source) const {

@@ -9,12 +9,15 @@
 
 namespace coxmesh::walk {
 
+constexpr std::uint64_t kNoneSettled = 0;  // (SequentialWalk::settled_)
+
 SequentialWalk::SequentialWalk(const Triangulation& t, IntersectionOracle& oracle, const TraceOptions& options)
     : t_(t),
       oracle_(oracle),
       options_(options),
       d_(t.dimension()),
       k_(oracle.codimension()),
+      settle_cofacets_(oracle.two_transverse_facets()),
       others_(packed_words(d_)),
       keep_cofacets_(options.keep_cofacets && oracle.two_transverse_facets() && oracle.codimension() < d_) {
   result_.ambient_dimension = d_;
@@ -85,8 +88,13 @@ void SequentialWalk::walk_from_head() {
     pivots = oracle_.pivot_enter(tau);
     cofacets.reset(tau, k_ + 1);
     const ArrivalVertex<kD> arrival(result_.simplices.key(head_), arrivals_[head_], d_);
+    const std::uint64_t settled = settled_[head_];
     std::uint32_t index = 0;
     while (const Simplex* mu = cofacets.next()) {
+      if (index < 64 && (settled >> index & 1) != 0) {
+        ++index;
+        continue;
+      }
       PendingCofacet& p = ring[taken % kRing];
       p.index = index++;
       p.tau = head_;
@@ -110,6 +118,15 @@ void SequentialWalk::finish_cofacet(const PendingCofacet& p) {
   if (f.kind == Kind::outside) add_boundary(p.mu, p.tau, outside_.data() + f.index);
   if (f.kind == Kind::inside && f.index >= known)  // discovered now, through μ
     arrivals_[f.index] = arrival_code<kD>(p.mu, f.facet, result_.simplices.key(f.index), d_);
+  if (settle_cofacets_ && f.kind == Kind::inside && f.index > p.tau) settle<kD>(p.mu, f.facet, f.index);
+}
+
+template <int kD>
+void SequentialWalk::settle(const Simplex& mu, int facet, std::uint32_t id) {
+  std::int32_t w[kMaxDimension];
+  vertex_of<kD>(mu, facet, w);
+  const std::uint64_t place = cofacet_place<kD>(result_.simplices.key(id), w, d_);
+  if (place < 64) settled_[id] |= std::uint64_t{1} << place;
 }
 
 // μ, met first from τ: its place among τ's cofacets, and τ and its other transverse facet if that is
@@ -167,6 +184,7 @@ Found SequentialWalk::classify(const Simplex& tau, const std::uint32_t* key, std
       append_few(result_.points, point_.data(), static_cast<std::size_t>(d_));
       append_few(domain_values_, &x.domain, 1);
       append_few(arrivals_, &kNoCofacet, 1);  // set by the walk
+      append_few(settled_, &kNoneSettled, 1);
       return {Kind::inside, id};
     } else {
       payload = static_cast<std::uint32_t>(outside_.size());

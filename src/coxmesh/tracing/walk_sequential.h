@@ -42,6 +42,8 @@ class SequentialWalk {
   template <int kD>
   void finish_cofacet(const PendingCofacet& p);
   void keep_cofacet(std::uint32_t tau, std::uint32_t place, std::uint32_t other);  // other: an id of S or kMiss
+  template <int kD>
+  void settle(const Simplex& mu, int facet, std::uint32_t id);  // μ walked: passed by from S[id], its facet
 
   template <int kD>
   Found classify(const Simplex& tau);
@@ -56,6 +58,12 @@ class SequentialWalk {
   TraceResult result_;
   UninitializedHugeVector<double> domain_values_;    // D̂ at each point of S
   UninitializedHugeVector<std::uint64_t> arrivals_;  // per simplex of S: the cofacet it was discovered through
+  // Per simplex τ of S: bit i (i < 64) set when τ's cofacet at place i (CofaceEnumerator order) was
+  // walked from its other transverse facet, a simplex of S with a smaller id. The walk passes it by:
+  // from τ it would only find that simplex again. Set only for an oracle that promises two
+  // transverse facets per cofacet (the arrival alone is passed by otherwise, as before).
+  const bool settle_cofacets_;
+  UninitializedHugeVector<std::uint64_t> settled_;
   PackedKeyIndex others_;
   std::vector<std::uint32_t> other_payload_;  // kMiss or index into outside_
   std::vector<double> outside_;               // (d + 1) per transverse simplex outside: point, D̂
