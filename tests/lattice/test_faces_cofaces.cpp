@@ -254,22 +254,22 @@ TEST(Cofaces, PackedCofacetsInEnumeratorOrderUpToTheLargestDimension) {
 }
 
 // for_each_cofacet_vertex gives, once per cofacet, the vertex it adds to τ: the same list as the
-// cofacets of CofaceEnumerator, up to order. And cofacet_place maps each vertex back to its
-// cofacet's place in the enumeration (with d fixed at compile time too, where the walk fixes it).
+// cofacets of CofaceEnumerator, up to order. And place_among_facet_cofacets finds each cofacet's
+// place in the enumeration from the cofacet and the vertex it adds (with d fixed at compile time
+// too, where the walk fixes it).
 void expect_cofacet_vertices_as_enumerated(const Simplex& s) {
   const int d = s.d;
   std::vector<std::vector<std::int32_t>> expected, found;
   CofaceEnumerator e(s, s.k + 1);
   std::vector<std::int32_t> v(d);
-  std::uint32_t key[packed_words(kMaxDimension)];
-  pack(s, key);
   std::uint64_t place = 0;
   for (Simplex c; e.next(c); ++place) {
-    c.vertex(extra_vertex_index(s, c), v.data());
+    const int j = extra_vertex_index(s, c);
+    c.vertex(j, v.data());
     expected.push_back(v);
-    EXPECT_EQ(cofacet_place(key, v.data(), d), place) << s << ", cofacet " << c;
+    EXPECT_EQ(place_among_facet_cofacets(c, j), place) << s << ", cofacet " << c;
     with_fixed_dimension<3, 4, 6, 9>(d, [&](auto fixed_d) {
-      EXPECT_EQ(cofacet_place<decltype(fixed_d)::value>(key, v.data(), d), place) << s << ", cofacet " << c;
+      EXPECT_EQ(place_among_facet_cofacets<decltype(fixed_d)::value>(c, j), place) << s << ", cofacet " << c;
     });
   }
   for_each_cofacet_vertex(s, [&](const std::int32_t* w) { found.emplace_back(w, w + d); });

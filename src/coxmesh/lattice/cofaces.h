@@ -230,48 +230,36 @@ void for_each_cofacet_vertex(const Simplex& tau, Emit&& emit) {
   }
 }
 
-/// The place among τ's cofacets, in the order of CofaceEnumerator(τ, k + 1), of the cofacet whose
-/// vertex not in τ is w; τ packed (`tau_key`, simplex.h), w one of its cofacets' new vertices. The
-/// inverse of the enumeration (thesis §3.5): w − v_b = e(A) names the block ω_b split and its part A
-/// put first; ω_b's last element t decides the half (t ∉ A: half 0, S = A; t ∈ A: half 1, S = ω_b ∖ A),
-/// and S, a Gray code over ω_b's other elements, the step. O(d), no enumeration. For a walk that
-/// meets a cofacet from one facet and would meet it again from the other (tracing/walk_sequential).
+/// The place of μ among the cofacets of its facet τ = μ without its vertex j, in the order of
+/// CofaceEnumerator(τ, k + 1): the inverse of that enumeration (thesis §3.5). τ joins two
+/// consecutive blocks of μ into its block ω_b, the first of them being the part A that μ puts first
+/// (for j = 0, μ's last block, with d, then its block 0). ω_b's last element t gives the half (t ∉ A:
+/// half 0, S = A; t ∈ A: half 1, S = ω_b ∖ A), and S, a Gray code over ω_b's other elements, the
+/// step. O(d), nothing enumerated. For a walk that meets μ from one transverse facet and would meet
+/// it again from the other (tracing/walk_sequential). kD as facet_without (faces.h).
 template <int kD = 0>
-std::uint64_t cofacet_place(const std::uint32_t* tau_key, const std::int32_t* w, int d) {
-  if constexpr (kD != 0) d = kD;
-  const auto label = [&](int i) { return static_cast<int>((tau_key[d + (i >> 2)] >> 8 * (i & 3)) & 0xFFu); };
-  const int k = label(d);
-  std::uint32_t members[kMaxDimension + 1];  // per block, its elements as a bit set
-  for (int b = 0; b <= k; ++b) members[b] = 0;
-  members[k] = std::uint32_t{1} << d;
-  // c_i = w_i − y_i: 1 before ω_b, 0 after it, [i ∈ A] in it; all one less when d ∈ A (then b = k).
-  std::uint32_t zero = 0, minus = 0;
-  for (int i = 0; i < d; ++i) {
-    const std::int32_t c = w[i] - static_cast<std::int32_t>(tau_key[i]);
-    members[label(i)] |= std::uint32_t{1} << i;
-    zero |= std::uint32_t{c == 0} << i;
-    minus |= std::uint32_t{c < 0} << i;
+std::uint64_t place_among_facet_cofacets(const Simplex& mu, int j) {
+  const int d = kD != 0 ? kD : mu.d, top = mu.k;
+  const int first = j == 0 ? top : j - 1, second = j == 0 ? 0 : j;  // μ's blocks that τ joins
+  std::uint8_t size[kMaxDimension + 2];
+  for (int g = 0; g <= top; ++g) size[g] = 0;
+  std::uint32_t a = 0, rest = 0;  // A, and ω_b ∖ A
+  for (int i = 0; i <= d; ++i) {
+    const int g = mu.block[i];
+    ++size[g];
+    a |= std::uint32_t{g == first} << i;
+    rest |= std::uint32_t{g == second} << i;
   }
-  int b = k;
-  std::uint32_t a;  // A
-  if (minus != 0) {
-    a = members[k] & ~minus;
-  } else {
-    zero |= std::uint32_t{1} << d;
-    b = 0;
-    while ((members[b] & zero) == 0) ++b;
-    a = members[b] & ~zero;
-  }
-  std::uint64_t place = 0;
-  for (int g = b + 1; g <= k; ++g) place += (std::uint64_t{1} << std::popcount(members[g])) - 2;
-  const std::uint32_t block = members[b];
-  const int t = 31 - std::countl_zero(block), n = std::popcount(block);
+  std::uint64_t place = 0;  // the cofacets of τ's blocks after ω_b: μ's blocks after `second` (none for j = 0)
+  for (int g = j == 0 ? top + 1 : j + 1; g <= top; ++g) place += (std::uint64_t{1} << size[g]) - 2;
+  const std::uint32_t block = a | rest;
+  const int t = 31 - std::countl_zero(block), n = size[first] + size[second];
   const bool half = (a >> t & 1) != 0;
-  const std::uint32_t s = half ? block & ~a : a;
-  std::uint32_t gray = 0;  // S over the block's first n − 1 elements, increasing
-  int j = 0;
-  for (std::uint32_t rest = block & ~(std::uint32_t{1} << t); rest != 0; rest &= rest - 1, ++j)
-    gray |= ((s >> std::countr_zero(rest)) & 1) << j;
+  const std::uint32_t s = half ? rest : a;
+  std::uint32_t gray = 0;  // S over ω_b's first n − 1 elements, increasing
+  int bit = 0;
+  for (std::uint32_t e = block & ~(std::uint32_t{1} << t); e != 0; e &= e - 1, ++bit)
+    gray |= ((s >> std::countr_zero(e)) & 1) << bit;
   std::uint32_t step = gray;  // the step whose Gray code is S
   for (int shift = 1; shift < 32; shift <<= 1) step ^= step >> shift;
   return place + (half ? (std::uint64_t{1} << (n - 1)) - 1 : 0) + step - 1;

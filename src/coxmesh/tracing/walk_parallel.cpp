@@ -132,10 +132,11 @@ void ParallelWalk::process_chunk(std::uint32_t chunk, std::uint32_t begin, std::
                                  [&](const Simplex& s) { return classify_in_level(s, chunk, worker, out, other); });
       if (s_.keep_cofacets_ && f.facet != kArrival && (f.kind != Kind::inside || other > id))  // (a row: > id)
         out.kept.push_back({id, place, f.kind == Kind::inside ? other : kMiss});
-      if (f.kind == Kind::inside && out.inside_arrivals.size() > known)  // first found now, through μ
+      if (s_.settle_cofacets_ && f.kind == Kind::inside && other > id)  // (the cofacet of arrival among them)
+        settle(mu, f.facet, other, out);
+      else if (f.kind == Kind::inside && out.inside_arrivals.size() > known)  // first found now, through μ
         out.inside_arrivals.back() =
             arrival_code(mu, f.facet, out.inside_keys.data() + out.inside_keys.size() - words, d_);
-      if (s_.settle_cofacets_ && f.kind == Kind::inside && other > id) settle(mu, f.facet, other, out);
       if (f.kind != Kind::outside) continue;
       // μ crosses the boundary (see SequentialWalk::add_boundary; duplicates are dropped by the merge)
       const double* p = s_.result_.points.data() + static_cast<std::size_t>(id) * d_;
@@ -151,11 +152,7 @@ void ParallelWalk::process_chunk(std::uint32_t chunk, std::uint32_t begin, std::
 // ChunkOutput::KeptCofacet::other), a simplex of the next level (marked by the merge) or a later
 // one of this level (marked now: the worker walking it may pass μ by or not, and finds the same).
 void ParallelWalk::settle(const Simplex& mu, int facet, std::uint64_t other, ChunkOutput& out) {
-  std::int32_t w[kMaxDimension];
-  std::uint32_t key[packed_words(kMaxDimension)];
-  mu.vertex(facet, w);
-  pack(facet_without(mu, facet), key);
-  const std::uint64_t place = cofacet_place(key, w, d_);
+  const std::uint64_t place = place_among_facet_cofacets(mu, facet);
   if (place >= 64) return;
   if ((other & ChunkOutput::kRow) != 0)
     out.settled.push_back({other, static_cast<std::uint32_t>(place)});

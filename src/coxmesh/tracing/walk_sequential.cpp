@@ -116,16 +116,16 @@ void SequentialWalk::finish_cofacet(const PendingCofacet& p) {
     keep_cofacet(p.tau, p.index, f.kind == Kind::inside ? f.index : kMiss);
   if (f.kind == Kind::miss) return;
   if (f.kind == Kind::outside) add_boundary(p.mu, p.tau, outside_.data() + f.index);
-  if (f.kind == Kind::inside && f.index >= known)  // discovered now, through μ
+  if (f.kind != Kind::inside || f.index <= p.tau) return;
+  if (settle_cofacets_)  // (the cofacet of arrival among them)
+    settle<kD>(p.mu, f.facet, f.index);
+  else if (f.index >= known)  // discovered now, through μ
     arrivals_[f.index] = arrival_code<kD>(p.mu, f.facet, result_.simplices.key(f.index), d_);
-  if (settle_cofacets_ && f.kind == Kind::inside && f.index > p.tau) settle<kD>(p.mu, f.facet, f.index);
 }
 
 template <int kD>
 void SequentialWalk::settle(const Simplex& mu, int facet, std::uint32_t id) {
-  std::int32_t w[kMaxDimension];
-  vertex_of<kD>(mu, facet, w);
-  const std::uint64_t place = cofacet_place<kD>(result_.simplices.key(id), w, d_);
+  const std::uint64_t place = place_among_facet_cofacets<kD>(mu, facet);
   if (place < 64) settled_[id] |= std::uint64_t{1} << place;
 }
 

@@ -56,14 +56,14 @@ class SequentialWalk {
   const TraceOptions& options_;
   const int d_, k_;
   TraceResult result_;
-  UninitializedHugeVector<double> domain_values_;    // D̂ at each point of S
-  UninitializedHugeVector<std::uint64_t> arrivals_;  // per simplex of S: the cofacet it was discovered through
-  // Per simplex τ of S: bit i (i < 64) set when τ's cofacet at place i (CofaceEnumerator order) was
-  // walked from its other transverse facet, a simplex of S with a smaller id. The walk passes it by:
-  // from τ it would only find that simplex again. Set only for an oracle that promises two
-  // transverse facets per cofacet (the arrival alone is passed by otherwise, as before).
+  UninitializedHugeVector<double> domain_values_;  // D̂ at each point of S
+  // Cofacets the walk passes by, as from τ it would only find again their other transverse facet, a
+  // simplex of S with a smaller id that walked them. With an oracle that promises two transverse
+  // facets per cofacet, all of them: bit i (i < 64) of settled_[τ] set for τ's cofacet at place i
+  // (CofaceEnumerator order). Otherwise only the one τ was discovered through: arrivals_[τ].
   const bool settle_cofacets_;
   UninitializedHugeVector<std::uint64_t> settled_;
+  UninitializedHugeVector<std::uint64_t> arrivals_;  // (a cofacet_code, or kNoCofacet)
   PackedKeyIndex others_;
   std::vector<std::uint32_t> other_payload_;  // kMiss or index into outside_
   std::vector<double> outside_;               // (d + 1) per transverse simplex outside: point, D̂
