@@ -297,6 +297,13 @@ bool ImplicitOracle::take_kept_factors(const Simplex& tau) {
     return false;
   }
   ++kept_head_;
+  if (kept_head_ != kept_tail_) {  // the next τ's entry, written a level ago and out of the caches by now
+    const std::size_t next = kept_head_ & (kept_capacity_ - 1);
+    const char* f = reinterpret_cast<const char*>(kept_factors_.data() + next * entry);
+    for (std::size_t b = 0; b < entry * sizeof(double); b += 64) __builtin_prefetch(f + b);
+    __builtin_prefetch(kept_keys_.data() + next * words);
+    __builtin_prefetch(kept_rows_.data() + next * n);
+  }
   const int* rows = kept_rows_.data() + at * n;
   if (rows[0] < 0) return false;
   const double* factors = kept_factors_.data() + at * entry;
