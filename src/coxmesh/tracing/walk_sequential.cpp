@@ -24,7 +24,14 @@ SequentialWalk::SequentialWalk(const Triangulation& t, IntersectionOracle& oracl
   result_.codimension = k_;
   result_.simplices = PackedKeyIndex(packed_words(d_));
   result_.boundary_simplices = PackedKeyIndex(packed_words(d_));
-  if (keep_cofacets_) cofacet_offsets_.assign(1, 0);
+  // The arrays that grow with S, in big blocks from the start (reserve_big_block says why).
+  result_.simplices.reserve_keys(HugePageAllocator<std::uint32_t>::kPage / (4 * packed_words(d_)));
+  for (auto* v : {&arrivals_, &settled_}) reserve_big_block(*v);
+  reserve_big_block(result_.points), reserve_big_block(domain_values_);
+  if (keep_cofacets_) {
+    for (auto* v : {&cofacet_offsets_, &cofacet_facets_, &cofacet_places_}) reserve_big_block(*v);
+    cofacet_offsets_.assign(1, 0);
+  }
 }
 
 TraceResult SequentialWalk::finish() {
@@ -137,10 +144,11 @@ void SequentialWalk::keep_cofacet(std::uint32_t tau, std::uint32_t place, std::u
     cofacet_offsets_ = {}, cofacet_facets_ = {}, cofacet_places_ = {};
     return;
   }
-  cofacet_places_.push_back(place);
-  cofacet_facets_.push_back(tau);
-  if (other != kMiss) cofacet_facets_.push_back(other);
-  cofacet_offsets_.push_back(static_cast<std::uint32_t>(cofacet_facets_.size()));
+  const std::uint32_t facets[2] = {tau, other};
+  append_few(cofacet_places_, &place, 1);
+  append_few(cofacet_facets_, facets, other != kMiss ? 2 : 1);
+  const auto end = static_cast<std::uint32_t>(cofacet_facets_.size());
+  append_few(cofacet_offsets_, &end, 1);
 }
 
 // The simplex limit is checked where a breadth-first level starts, in the sequential and the

@@ -156,6 +156,21 @@ void append_few(V& v, const typename V::value_type* p, std::size_t n) {
   std::copy_n(p, n, v.data() + size);
 }
 
+/// Gives v room for one big block (2 MiB) when it has less, for an array that will grow by appends
+/// (append_few): a big block's pages cost nothing until written, so a small array costs the pages
+/// it fills, and a big one moves first at 2 MiB, not every time it doubles from a few bytes on (each
+/// move a copy, and a page fault per page of the new block). Not under AddressSanitizer, which gets
+/// every block written in full (big_blocks.cpp).
+template <class V>
+void reserve_big_block(V& v) {
+#if !defined(__SANITIZE_ADDRESS__)
+  using T = typename V::value_type;
+  v.reserve(std::max(v.capacity(), HugePageAllocator<T>::kPage / sizeof(T)));
+#else
+  (void)v;
+#endif
+}
+
 /// Resizes v to n elements; when v has to move, it reserves kHeadroom times its capacity. A move
 /// copies v serially, a big block's pages cost nothing until written: arrays that grow level after
 /// level while several threads wait (the parallel walk's) move less often. Where the system
