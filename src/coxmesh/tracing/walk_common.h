@@ -118,6 +118,7 @@ class ArrivalVertex {
     for (int i = 0; i < dimension(); ++i)
       w_[i] = static_cast<std::int32_t>(tau_key[i]) + static_cast<std::int32_t>(arrival >> (2 * i) & 3) - 1;
   }
+  static ArrivalVertex none() { return ArrivalVertex(nullptr, kNoCofacet, kD != 0 ? kD : 1); }
   bool is(const std::int32_t* v) const {
     if (none_) return false;
     std::int32_t diff = 0;

@@ -25,6 +25,7 @@ DistributedWalk::DistributedWalk(const Triangulation& t, IntersectionOracle& ora
       rank_(comm.rank()),
       ranks_(comm.size()),
       mine_(words_),
+      settle_cofacets_(oracle.two_transverse_facets()),
       next_(words_),
       others_(words_),
       known_vertices_(d_),
@@ -45,15 +46,16 @@ Found DistributedWalk::classify(const Simplex& tau, const std::uint32_t* key, st
   const int owner = last_owner_.of(tau.y.data());
   Slots slots;  // (where the test below inserts τ, found by these look-ups)
   if (owner == rank_) {
-    if (const std::uint32_t id = mine_.find(key, h); id != PackedKeyIndex::kAbsent) return {Kind::inside, id};
+    if (const std::uint32_t id = mine_.find(key, h); id != PackedKeyIndex::kAbsent)
+      return held_ = Held::mine, Found{Kind::inside, id};
     if (const std::uint32_t id = next_.find(key, h, slots.next); id != PackedKeyIndex::kAbsent)
-      return {Kind::inside, id};
+      return held_ = Held::next, Found{Kind::inside, id};
   }
   const std::uint32_t known = others_.find(key, h, slots.others);
   if (known != PackedKeyIndex::kAbsent) {
     const std::uint32_t p = other_payload_[known];
     if (p == kMiss) return {Kind::miss, 0};
-    if (p == kRemoteInside) return {Kind::inside, 0};
+    if (p == kRemoteInside) return held_ = Held::remote, Found{Kind::inside, 0};
     if (p != kUntested) return {Kind::outside, p};
   }
   return test(key, h, tau, owner, known, slots);
@@ -68,14 +70,14 @@ Found DistributedWalk::test(const std::uint32_t* key, std::uint64_t hash, const 
   ++tests_;
   const Intersection x = oracle_.intersect(tau, point_.data());
   if (x.hit && x.domain < 0) {
-    std::memcpy(fresh_key_, key, sizeof(std::uint32_t) * words_);
+    constexpr std::uint64_t kNoneSettled = 0;
     if (owned) {
       const std::uint32_t id = next_.insert_at(slots.next, key, hash);  // (absent: classify looked)
       next_keys_.push_back(discovery_);
-      next_arrivals_.push_back(kNoCofacet);
+      next_settled_.push_back(kNoneSettled);
       next_data_.insert(next_data_.end(), point_.begin(), point_.end());
       next_data_.push_back(x.domain);
-      fresh_ = Fresh::owned, fresh_at_ = id;
+      fresh_ = Fresh::owned, fresh_at_ = id, held_ = Held::next;
       return {Kind::inside, id};
     }
     others_.insert_at(slots.others, key, hash);  // (absent: classify looked, and τ is not ours)
@@ -85,11 +87,12 @@ Found DistributedWalk::test(const std::uint32_t* key, std::uint64_t hash, const 
       put(out, key, words_);
       put(out, &discovery_, 1);
       fresh_ = Fresh::remote, fresh_owner_ = owner, fresh_at_ = out.size();
-      put(out, &kNoCofacet, 1);
+      put(out, &kNoneSettled, 1);
       put(out, point_.data(), d_);
       put(out, &x.domain, 1);
       ++candidates_sent_;
     }
+    held_ = Held::remote;
     return {Kind::inside, 0};
   }
   std::uint32_t payload = kMiss;
@@ -108,10 +111,27 @@ Found DistributedWalk::test(const std::uint32_t* key, std::uint64_t hash, const 
   return payload == kMiss ? Found{Kind::miss, 0} : Found{Kind::outside, payload};
 }
 
-// What the sequential walk records for a simplex discovered through μ.
-void DistributedWalk::set_fresh_arrival(std::uint64_t arrival) {
-  if (fresh_ == Fresh::owned) next_arrivals_[fresh_at_] = arrival;
-  if (fresh_ == Fresh::remote) std::memcpy(candidates_out_[fresh_owner_].data() + fresh_at_, &arrival, sizeof arrival);
+// μ, walked from S[i] to its facet f (inside), settled there as SequentialWalk::settle does: where
+// this rank keeps that facet (its part of S, if walked after S[i], or of the next level), or in the
+// message that hands a new one to its owner. A facet that another rank owns and this one had met
+// before is not marked: the owner walks μ once more.
+template <int kD>
+void DistributedWalk::settle(std::uint32_t i, const PendingCofacet& p, const Found& f) {
+  if (!settle_cofacets_ && fresh_ == Fresh::no) return;  // (then only the cofacet of arrival)
+  const std::uint64_t place = place_among_facet_cofacets<kD>(p.mu, f.facet);
+  if (place >= 64) return;
+  const std::uint64_t bit = std::uint64_t{1} << place;
+  if (fresh_ == Fresh::remote) {
+    std::byte* at = candidates_out_[fresh_owner_].data() + fresh_at_;
+    std::uint64_t settled;
+    std::memcpy(&settled, at, sizeof settled);
+    settled |= bit;
+    std::memcpy(at, &settled, sizeof settled);
+  } else if (held_ == Held::next) {
+    next_settled_[f.index] |= bit;
+  } else if (held_ == Held::mine && f.index > i) {  // (ids here increase with the global ones)
+    settled_[f.index] |= bit;
+  }
 }
 
 // SequentialWalk::walk on this rank's part of one level, in the order of their global ids, with
@@ -126,14 +146,18 @@ void DistributedWalk::walk_level() {
   Simplex tau;
   CofaceEnumerator cofacets;
   CofacetPipeline pipeline;
+  const ArrivalVertex<kD> no_arrival = ArrivalVertex<kD>::none();  // (settled_ has it)
   for (std::uint32_t i = level_begin_; i < level_end_; ++i) {
     tau = mine_.simplex(i, d_);
     const bool pivots = oracle_.pivot_enter(tau);
-    const ArrivalVertex<kD> arrival(mine_.key(i), arrivals_[i], d_);
+    const std::uint64_t settled = settled_[i];
     cofacets.reset(tau, k_ + 1);
     pipeline.run(
         cofacets,
-        [&](const Simplex& mu, PendingCofacet& p) { return take_cofacet<kD>(oracle_, pivots, tau, arrival, mu, p); },
+        [&](const Simplex& mu, PendingCofacet& p) {
+          return (p.index >= 64 || (settled >> p.index & 1) == 0) &&
+                 take_cofacet<kD>(oracle_, pivots, tau, no_arrival, mu, p);
+        },
         [&](PendingCofacet& p) {
           if (guess_other_facet<kD>(oracle_, pivots, p)) fetch_slots(p);
         },
@@ -162,8 +186,8 @@ void DistributedWalk::finish_cofacet(std::uint32_t i, const PendingCofacet& p) {
     boundary_simplices_.insert(boundary_simplices_.end(), key, key + words_);
     append_boundary_point(boundary_points_, points_.data() + static_cast<std::size_t>(i) * d_, domain_values_[i],
                           outside_.data() + f.index, d_);
-  } else if (f.kind == Kind::inside && fresh_ != Fresh::no) {
-    set_fresh_arrival(arrival_code<kD>(mu, f.facet, fresh_key_, d_));
+  } else if (f.kind == Kind::inside) {
+    settle<kD>(i, p, f);
   }
 }
 

@@ -35,8 +35,10 @@ class DistributedWalk {
 
  private:
   // What a test of a k-simplex found that the caller must complete: a transverse simplex inside the
-  // domain met for the first time here (its arrival code is known only to the walk).
+  // domain met for the first time here (the cofacet it was met through is known only to the walk).
   enum class Fresh : std::uint8_t { no, owned, remote };
+  // Where classify found a simplex inside: in this rank's part of S, of the next level, or another's.
+  enum class Held : std::uint8_t { mine, next, remote };
   // Payloads of others_ besides kMiss and an index into outside_.
   static constexpr std::uint32_t kRemoteInside = 0xFFFFFFFEu;  // another rank's simplex of S
   static constexpr std::uint32_t kUntested = 0xFFFFFFFDu;      // ours, tested (and counted) by another rank
@@ -52,7 +54,8 @@ class DistributedWalk {
   void finish_cofacet(std::uint32_t i, const PendingCofacet& p);
   Found test(const std::uint32_t* key, std::uint64_t hash, const Simplex& tau, int owner, std::uint32_t known,
              const Slots& slots);
-  void set_fresh_arrival(std::uint64_t arrival);
+  template <int kD>
+  void settle(std::uint32_t i, const PendingCofacet& p, const Found& f);
   void walk_level();
   template <int kD>  // (d fixed at compile time, 0: read at run time)
   void walk_level();
@@ -78,16 +81,19 @@ class DistributedWalk {
   Communicator& comm_;
   const int d_, k_, words_, rank_, ranks_;
 
-  // This rank's part of S: keys, global ids (increasing), points, D̂ and arrival codes.
+  // This rank's part of S: keys, global ids (increasing), points, D̂ and settled cofacets (as
+  // SequentialWalk::settled_: all of them that this rank or a sender of the simplex walked, with an
+  // oracle that promises two transverse facets per cofacet, else the one it was discovered through).
   PackedKeyIndex mine_;
   std::vector<std::uint32_t> global_ids_;
   std::vector<double> points_, domain_values_;
-  std::vector<std::uint64_t> arrivals_;
+  std::vector<std::uint64_t> settled_;
+  const bool settle_cofacets_;
   std::uint64_t global_size_ = 0;                  // |S| over all ranks
   std::uint32_t level_begin_ = 0, level_end_ = 0;  // this rank's part of the level being walked
   // The next level's simplices owned here, with their discovery keys (the smallest seen wins).
   PackedKeyIndex next_;
-  std::vector<std::uint64_t> next_keys_, next_arrivals_;
+  std::vector<std::uint64_t> next_keys_, next_settled_;
   std::vector<double> next_data_;  // d + 1 each: point, D̂
   // Every other tested simplex: payload kMiss, kRemoteInside, kUntested (tested by another rank),
   // or an index into outside_ (point, D̂).
@@ -107,9 +113,9 @@ class DistributedWalk {
   std::uint64_t discovery_ = 0;          // the key of what the current test discovers
   bool reporting_ = true;                // send discoveries and tests to their owners (not in the seed search)
   Fresh fresh_ = Fresh::no;
+  Held held_ = Held::mine;  // (of the last simplex classify found inside)
   int fresh_owner_ = 0;
-  std::size_t fresh_at_ = 0;  // where its arrival code goes (next_ id, or byte offset in candidates_out_)
-  std::uint32_t fresh_key_[packed_words(kMaxDimension)];
+  std::size_t fresh_at_ = 0;  // where its settled cofacets go (next_ id, or byte offset in candidates_out_)
   std::vector<double> point_;
   LastOwner last_owner_;  // (of a tested simplex's minimal vertex)
   std::uint64_t calls_ = 0, tests_ = 0, evaluations_ = 0, vertex_values_sent_ = 0, candidates_sent_ = 0, levels_ = 0;

@@ -218,28 +218,29 @@ void DistributedWalk::exchange_candidates() {
   for (auto& out : candidates_out_) out.clear();
   const std::size_t record = sizeof(std::uint32_t) * words_ + 2 * sizeof(std::uint64_t) + sizeof(double) * (d_ + 1);
   std::uint32_t key[packed_words(kMaxDimension)];
-  std::uint64_t discovery, arrival;
+  std::uint64_t discovery, settled;
   // (the bytes left, not in + record: past the end, or from an empty buffer's null pointer, that is
   // undefined, and clang's UBSan reports it)
   const std::byte* const end = found.data() + found.size();
   for (const std::byte* in = found.data(); static_cast<std::size_t>(end - in) >= record;) {
     take(in, key, words_);
     take(in, &discovery, 1);
-    take(in, &arrival, 1);
+    take(in, &settled, 1);
     const std::uint64_t h = hash_words(key, words_);
     if (mine_.find(key, h) != PackedKeyIndex::kAbsent) {
       in += sizeof(double) * (d_ + 1);
       continue;
     }
     if (const std::uint32_t id = next_.find(key, h); id != PackedKeyIndex::kAbsent) {
-      if (discovery < next_keys_[id]) next_keys_[id] = discovery, next_arrivals_[id] = arrival;
+      next_keys_[id] = std::min(next_keys_[id], discovery);
+      next_settled_[id] |= settled;
       in += sizeof(double) * (d_ + 1);
       continue;
     }
     ++calls_;  // (tested by the sender only)
     next_.insert(key, h);
     next_keys_.push_back(discovery);
-    next_arrivals_.push_back(arrival);
+    next_settled_.push_back(settled);
     const std::size_t at = next_data_.size();
     next_data_.resize(at + d_ + 1);
     take(in, next_data_.data() + at, d_ + 1);
@@ -307,13 +308,13 @@ void DistributedWalk::join_level(const std::vector<std::uint32_t>& order, const 
     const double* data = next_data_.data() + static_cast<std::size_t>(j) * (d_ + 1);
     points_.insert(points_.end(), data, data + d_);
     domain_values_.push_back(data[d_]);
-    arrivals_.push_back(next_arrivals_[j]);
+    settled_.push_back(next_settled_[j]);
   }
   level_end_ = mine_.size();
   global_size_ += run_begin[ranks_];
   level_global_size_ = run_begin[ranks_];
   next_.clear();
-  next_keys_.clear(), next_arrivals_.clear(), next_data_.clear();
+  next_keys_.clear(), next_settled_.clear(), next_data_.clear();
 }
 
 void DistributedWalk::sum_counts(std::uint64_t& oracle_calls, std::uint64_t& function_evaluations,
