@@ -337,7 +337,10 @@ void ImplicitOracle::prefetch_pivot_d(const std::int32_t* v) {
 // a segment leaving τ at t = 0; it leaves μ where the first coordinate λ_j − t·w_j reaches 0.
 bool ImplicitOracle::pivot_enter(const Simplex& tau) {
   const int n = k_ + 1;
-  if (take_kept_factors(tau)) return true;  // (n > 2: no vertex of τ on M then, intersect decided otherwise)
+  if (take_kept_factors(tau)) {  // (n > 2: no vertex of τ on M then, intersect decided otherwise)
+    if (n > 2) pivot_lu_.keep_reciprocals();
+    return true;
+  }
   double m[SmallLu::kMaxN * SmallLu::kMaxN];
   system_matrix(tau, m, nullptr);
   if (n == 2) {  // k = 1: signs decide (see pivot_exit)
@@ -345,6 +348,7 @@ bool ImplicitOracle::pivot_enter(const Simplex& tau) {
     return true;
   }
   if (!pivot_lu_.factor(n, m)) return false;
+  pivot_lu_.keep_reciprocals();
   pivot_lu_.solve_unit(0, pivot_lambda_.data());
   pivot_rows_ready_ = 0;
   for (int j = 0; j < n; ++j) {  // a vertex on M: λ_τ is exactly e_j (rounding would blur the ties)
@@ -373,7 +377,7 @@ int ImplicitOracle::pivot_exit_n(const double* val) {
   double a[SmallLu::kMaxN], w[SmallLu::kMaxN];
   a[0] = 1.0;
   for (int i = 1; i < n; ++i) a[i] = val[i - 1];
-  pivot_lu_.solve(a, w);
+  pivot_lu_.solve_guess(a, w);  // (a guess: intersect checks it)
   // The least ratio λ_j / w_j over w_j > 0, then the j that reach it. The signs of w and the order
   // of the ratios are as good as random: minima and masks, not branches.
   double ratio[SmallLu::kMaxN];
