@@ -379,13 +379,13 @@ int ImplicitOracle::pivot_exit_n(const double* val) {
   for (int i = 1; i < n; ++i) a[i] = val[i - 1];
   pivot_lu_.solve_guess(a, w);  // (a guess: intersect checks it)
   // The least ratio λ_j / w_j over w_j > 0, then the j that reach it. The signs of w and the order
-  // of the ratios are as good as random: minima and masks, not branches.
+  // of the ratios are as good as random: minima and masks, not branches. A w_j ≤ 0 (−0 and NaN
+  // included) divides by +0: its ratio is +∞, or NaN, which std::min passes over.
   double ratio[SmallLu::kMaxN];
-  constexpr double kNone = std::numeric_limits<double>::infinity();
-  double best = kNone;
+  double best = std::numeric_limits<double>::infinity();
   for (int j = 0; j < n; ++j) {
-    ratio[j] = std::max(pivot_lambda_[j], 0.0) / w[j];
-    best = std::min(best, w[j] > 0 ? ratio[j] : kNone);
+    ratio[j] = std::max(pivot_lambda_[j], 0.0) / std::max(0.0, w[j]);
+    best = std::min(best, ratio[j]);
   }
   std::uint32_t tied = 0;
   for (int j = 0; j < n; ++j) tied |= static_cast<std::uint32_t>((w[j] > 0) & (ratio[j] == best)) << j;
