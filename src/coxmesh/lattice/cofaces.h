@@ -242,7 +242,9 @@ std::uint64_t place_among_facet_cofacets(const Simplex& mu, int j) {
   const int d = kD != 0 ? kD : mu.d, top = mu.k;
   const int first = j == 0 ? top : j - 1, second = j == 0 ? 0 : j;  // μ's blocks that τ joins
   std::uint8_t size[kMaxDimension + 2];
-  for (int g = 0; g <= top; ++g) size[g] = 0;
+  // (zeroed by a pass over the elements, as every block has one: a loop over the blocks compiles to
+  // a `rep stos`, slow to start for a few bytes)
+  for (int i = 0; i <= d; ++i) size[mu.block[i]] = 0;
   std::uint32_t a = 0, rest = 0;  // A, and ω_b ∖ A
   for (int i = 0; i <= d; ++i) {
     const int g = mu.block[i];
