@@ -261,6 +261,8 @@ class PackedKeyIndex {
     if (n > kMaxEntries) throw InputError("more than 2^31 - 1 entries in one index");
     keys_.reserve(n * words_);
   }
+  /// Room for keys in one big block at least (reserve_big_block, util/huge_page_allocator.h).
+  void reserve_key_block() { reserve_big_block(keys_); }
   /// A table for n keys (load ≤ 1/2), without room for the keys themselves.
   void reserve_table(std::size_t n) {
     std::size_t cap = slots_.size();

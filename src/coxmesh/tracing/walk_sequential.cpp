@@ -25,7 +25,7 @@ SequentialWalk::SequentialWalk(const Triangulation& t, IntersectionOracle& oracl
   result_.simplices = PackedKeyIndex(packed_words(d_));
   result_.boundary_simplices = PackedKeyIndex(packed_words(d_));
   // The arrays that grow with S, in big blocks from the start (reserve_big_block says why).
-  result_.simplices.reserve_keys(HugePageAllocator<std::uint32_t>::kPage / (4 * packed_words(d_)));
+  result_.simplices.reserve_key_block();
   for (auto* v : {&arrivals_, &settled_}) reserve_big_block(*v);
   reserve_big_block(result_.points), reserve_big_block(domain_values_);
   if (keep_cofacets_) {

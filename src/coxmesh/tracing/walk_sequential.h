@@ -43,7 +43,7 @@ class SequentialWalk {
   void finish_cofacet(const PendingCofacet& p);
   void keep_cofacet(std::uint32_t tau, std::uint32_t place, std::uint32_t other);  // other: an id of S or kMiss
   template <int kD>
-  void settle(const Simplex& mu, int facet, std::uint32_t id);  // μ walked: passed by from S[id], its facet
+  void settle(const Simplex& mu, int facet, std::uint32_t id);  // μ walked to S[id], μ without vertex `facet`
 
   template <int kD>
   Found classify(const Simplex& tau);
