@@ -77,14 +77,7 @@ class SmallLu {
   /// x = M⁻¹·b (b and x may not alias).
   void solve(const double* b, double* x) const {
     with_small_size(n_, [&]<int N>() {
-      const int n = N ? N : n_;
-      COXMESH_UNROLL_9
-      for (int r = 0; r < n; ++r) {
-        double s = b[perm_[r]];
-        COXMESH_UNROLL_9
-        for (int j = 0; j < r; ++j) s -= at<N>(r, j) * x[j];
-        x[r] = s;
-      }
+      forward_substitute<N>(b, x);
       back_substitute<N>(x);
     });
   }
@@ -98,21 +91,8 @@ class SmallLu {
   /// exact rule checks (ImplicitOracle::pivot_exit).
   void solve_guess(const double* b, double* x) const {
     with_small_size(n_, [&]<int N>() {
-      const int n = N ? N : n_;
-      COXMESH_UNROLL_9
-      for (int r = 0; r < n; ++r) {
-        double s = b[perm_[r]];
-        COXMESH_UNROLL_9
-        for (int j = 0; j < r; ++j) s -= at<N>(r, j) * x[j];
-        x[r] = s;
-      }
-      COXMESH_UNROLL_9
-      for (int r = n - 1; r >= 0; --r) {
-        double s = x[r];
-        COXMESH_UNROLL_9
-        for (int j = r + 1; j < n; ++j) s -= at<N>(r, j) * x[j];
-        x[r] = s * reciprocal_[r];
-      }
+      forward_substitute<N>(b, x);
+      back_substitute<N, true>(x);
     });
   }
 
@@ -215,14 +195,26 @@ class SmallLu {
     return true;
   }
 
+  // x = L⁻¹·P·b.
   template <int N>
+  void forward_substitute(const double* b, double* x) const {
+    COXMESH_UNROLL_9
+    for (int r = 0; r < (N ? N : n_); ++r) {
+      double s = b[perm_[r]];
+      COXMESH_UNROLL_9
+      for (int j = 0; j < r; ++j) s -= at<N>(r, j) * x[j];
+      x[r] = s;
+    }
+  }
+  // x = U⁻¹·x, dividing by U's diagonal, or multiplying by its kept reciprocals.
+  template <int N, bool kReciprocals = false>
   void back_substitute(double* x) const {
     COXMESH_UNROLL_9
     for (int r = (N ? N : n_) - 1; r >= 0; --r) {
       double s = x[r];
       COXMESH_UNROLL_9
       for (int j = r + 1; j < (N ? N : n_); ++j) s -= at<N>(r, j) * x[j];
-      x[r] = s / at<N>(r, r);
+      x[r] = kReciprocals ? s * reciprocal_[r] : s / at<N>(r, r);
     }
   }
 
