@@ -52,6 +52,8 @@ constexpr std::uint32_t kMiss = 0xFFFFFFFFu;
 // The lattice vertex w of a cofacet μ of τ not in τ, as 2 bits per coordinate of w − y(τ) ∈ {−1, 0, 1}
 // (w and y(τ) are vertices of one simplex): with τ, it names μ exactly in 62 bits.
 constexpr std::uint64_t kNoCofacet = ~std::uint64_t{0};  // "11" never occurs as a pair of bits
+// The settled cofacets of a simplex just found: none (SequentialWalk::settled_).
+constexpr std::uint64_t kNoneSettled = 0;
 inline std::uint64_t cofacet_code(const std::int32_t* w, const std::uint32_t* tau_key, int d) {
   std::uint64_t code = 0;
   for (int i = 0; i < d; ++i)

@@ -70,7 +70,6 @@ Found DistributedWalk::test(const std::uint32_t* key, std::uint64_t hash, const 
   ++tests_;
   const Intersection x = oracle_.intersect(tau, point_.data());
   if (x.hit && x.domain < 0) {
-    constexpr std::uint64_t kNoneSettled = 0;
     if (owned) {
       const std::uint32_t id = next_.insert_at(slots.next, key, hash);  // (absent: classify looked)
       next_keys_.push_back(discovery_);

@@ -285,7 +285,7 @@ void ParallelWalk::merge(std::size_t n_chunks) {
   grow_with_headroom(s_.domain_values_, size);
   grow_with_headroom(s_.arrivals_, size);
   grow_with_headroom(s_.settled_, size);
-  std::fill(s_.settled_.data() + first, s_.settled_.data() + size, std::uint64_t{0});
+  std::fill(s_.settled_.data() + first, s_.settled_.data() + size, kNoneSettled);
   for (std::size_t c = 0; c < n_chunks; ++c)
     for (const ChunkOutput::Settled& m : outputs[c].settled) {
       const std::uint32_t id = outputs[m.row >> 32 & 0x7FFFFFFFu].inside_ids[static_cast<std::uint32_t>(m.row)];

@@ -9,8 +9,6 @@
 
 namespace coxmesh::walk {
 
-constexpr std::uint64_t kNoneSettled = 0;  // (SequentialWalk::settled_)
-
 SequentialWalk::SequentialWalk(const Triangulation& t, IntersectionOracle& oracle, const TraceOptions& options)
     : t_(t),
       oracle_(oracle),
