@@ -255,8 +255,8 @@ TEST(Cofaces, PackedCofacetsInEnumeratorOrderUpToTheLargestDimension) {
 
 // for_each_cofacet_vertex gives, once per cofacet, the vertex it adds to τ: the same list as the
 // cofacets of CofaceEnumerator, up to order. And place_among_facet_cofacets finds each cofacet's
-// place in the enumeration from the cofacet and the vertex it adds (with d fixed at compile time
-// too, where the walk fixes it).
+// place in the enumeration from the cofacet alone and the index of the vertex it adds (with d fixed
+// at compile time too, where the walk fixes it).
 void expect_cofacet_vertices_as_enumerated(const Simplex& s) {
   const int d = s.d;
   std::vector<std::vector<std::int32_t>> expected, found;
